@@ -1,0 +1,135 @@
+#include "valve/analysis/leaflet_metrics.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "valve/mesh/topology.hpp"
+
+namespace valve {
+
+namespace {
+// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5),
+// returned as barycentric coordinates.
+Vec3 closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
+  const Vec3 bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
+    const double v = d1 / (d1 - d3);
+    return {1 - v, v, 0};
+  }
+  const Vec3 cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
+    const double w = d2 / (d2 - d6);
+    return {1 - w, 0, w};
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
+    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    return {0, 1 - w, w};
+  }
+  const double denom = 1.0 / (va + vb + vc);
+  const double v = vb * denom, w = vc * denom;
+  return {1 - v - w, v, w};
+}
+}  // namespace
+
+std::vector<int> free_edge_polyline(const TriMesh& m, int leaflet) {
+  std::vector<Tri> tris;
+  for (int t = 0; t < m.num_triangles(); ++t)
+    if (m.leaflet.empty() || m.leaflet[t] == leaflet) tris.push_back(m.triangles[t]);
+  const Topology topo = build_topology(tris, m.num_nodes());
+  for (const auto& loop : topo.loops) {
+    const int n = static_cast<int>(loop.size());
+    auto is_free = [&](int k) { return m.boundary[loop[((k % n) + n) % n]] == BoundaryType::free_edge; };
+    int start = -1;
+    for (int k = 0; k < n; ++k)
+      if (is_free(k) && !is_free(k - 1)) {
+        start = k;
+        break;
+      }
+    if (start < 0) continue;
+    std::vector<int> out{loop[((start - 1) % n + n) % n]};
+    int k = start;
+    while (is_free(k) && static_cast<int>(out.size()) <= n) out.push_back(loop[(k++) % n]);
+    out.push_back(loop[k % n]);
+    return out;
+  }
+  return {};
+}
+
+double polyline_length(const std::vector<int>& nodes, const VecX& x) {
+  double l = 0;
+  for (size_t k = 1; k < nodes.size(); ++k) l += (node3(x, nodes[k]) - node3(x, nodes[k - 1])).norm();
+  return l;
+}
+
+int free_edge_middle_node(const TriMesh& m, int leaflet) {
+  const auto line = free_edge_polyline(m, leaflet);
+  if (line.size() < 3) return -1;
+  const VecX X = flatten(m.points);
+  const double half = 0.5 * polyline_length(line, X);
+  double acc = 0, best = 1e300;
+  int node = -1;
+  for (size_t k = 1; k + 1 < line.size(); ++k) {
+    acc += (node3(X, line[k]) - node3(X, line[k - 1])).norm();
+    if (std::abs(acc - half) < best) best = std::abs(acc - half), node = line[k];
+  }
+  return node;
+}
+
+SurfacePoint closest_surface_point(const TriMesh& m, const Vec3& p) {
+  SurfacePoint best{0, Vec3(1, 0, 0)};
+  double bd = 1e300;
+  for (int t = 0; t < m.num_triangles(); ++t) {
+    const Tri& tri = m.triangles[t];
+    const Vec3 a = m.points.row(tri[0]), b = m.points.row(tri[1]), c = m.points.row(tri[2]);
+    const Vec3 w = closest_barycentric(p, a, b, c);
+    const double d = (w[0] * a + w[1] * b + w[2] * c - p).squaredNorm();
+    if (d < bd) bd = d, best = {t, w};
+  }
+  return best;
+}
+
+Vec3 evaluate(const TriMesh& m, const SurfacePoint& sp, const VecX& x) {
+  const Tri& t = m.triangles[sp.triangle];
+  return sp.barycentric[0] * node3(x, t[0]) + sp.barycentric[1] * node3(x, t[1]) + sp.barycentric[2] * node3(x, t[2]);
+}
+
+double Midline::length(const TriMesh& m, const VecX& x) const {
+  double l = 0;
+  for (size_t k = 1; k < points.size(); ++k) l += (evaluate(m, points[k], x) - evaluate(m, points[k - 1], x)).norm();
+  return l;
+}
+
+Midline leaflet_midline(const TriMesh& m, int leaflet, int samples) {
+  Midline ml;
+  const int top = free_edge_middle_node(m, leaflet);
+  if (top < 0) return ml;
+  std::vector<char> in_leaflet(m.num_nodes(), 0);
+  for (int t = 0; t < m.num_triangles(); ++t)
+    if (m.leaflet.empty() || m.leaflet[t] == leaflet)
+      for (int k = 0; k < 3; ++k) in_leaflet[m.triangles[t][k]] = 1;
+  const Vec3 P = m.points.row(top);
+  int bottom = -1;
+  double far = -1;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (in_leaflet[i] && m.boundary[i] == BoundaryType::attached) {
+      const double d = (m.points.row(i).transpose() - P).norm();
+      if (d > far) far = d, bottom = i;
+    }
+  if (bottom < 0) return ml;
+  const Vec3 Q = m.points.row(bottom);
+  for (int k = 0; k <= samples; ++k) ml.points.push_back(closest_surface_point(m, P + (Q - P) * (double(k) / samples)));
+  return ml;
+}
+
+}  // namespace valve

@@ -1,0 +1,216 @@
+#include "valve/config/json_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/error.hpp"
+
+namespace valve {
+
+json load_json_file(const std::filesystem::path& path) {
+  const std::string text = read_text_file(path);
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    // Turn the byte offset into a line number: people open files by line.
+    const size_t offset = std::min<size_t>(e.byte, text.size());
+    const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+    throw InputError(path.string() + ": line " + std::to_string(line) +
+                     ": expected valid JSON, found a syntax error (" + e.what() + ")");
+  }
+}
+
+std::string describe_json(const json& v) {
+  std::string dump = v.dump();
+  if (dump.size() > 60) dump = dump.substr(0, 57) + "...";
+  return std::string(v.type_name()) + " " + dump;
+}
+
+JsonReader::JsonReader(const json& object, std::string file, std::string path)
+    : object_(object), file_(std::move(file)), path_(std::move(path)) {
+  if (!object_.is_object()) throw_input_error(file_, path_.empty() ? "(top level)" : path_, "an object", describe_json(object_));
+}
+
+std::string JsonReader::key_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
+
+void JsonReader::fail(const std::string& key, const std::string& expected,
+                      const std::string& found) const {
+  throw_input_error(file_, key_path(key), expected, found);
+}
+
+bool JsonReader::has(const std::string& key) const { return object_.contains(key); }
+
+const json* JsonReader::find(const std::string& key) {
+  read_.insert(key);
+  auto it = object_.find(key);
+  if (it == object_.end() || it->is_null()) return nullptr;
+  return &*it;
+}
+
+double JsonReader::number(const std::string& key, std::optional<double> fallback, double min,
+                          double max) {
+  const json* v = find(key);
+  double x;
+  if (!v) {
+    if (!fallback) fail(key, "a number", "nothing (the key is required)");
+    x = *fallback;
+  } else {
+    if (!v->is_number()) fail(key, "a number", describe_json(*v));
+    x = v->get<double>();
+  }
+  if (!std::isfinite(x) || x < min || x > max) {
+    std::ostringstream range;
+    range << "a number in [" << min << ", " << max << "]";
+    fail(key, range.str(), std::to_string(x));
+  }
+  used_[key] = x;
+  return x;
+}
+
+int JsonReader::integer(const std::string& key, std::optional<int> fallback, int min, int max) {
+  const json* v = find(key);
+  long long x;
+  if (!v) {
+    if (!fallback) fail(key, "an integer", "nothing (the key is required)");
+    x = *fallback;
+  } else {
+    if (!v->is_number_integer()) fail(key, "an integer", describe_json(*v));
+    x = v->get<long long>();
+  }
+  if (x < min || x > max)
+    fail(key, "an integer in [" + std::to_string(min) + ", " + std::to_string(max) + "]",
+         std::to_string(x));
+  used_[key] = x;
+  return static_cast<int>(x);
+}
+
+bool JsonReader::boolean(const std::string& key, std::optional<bool> fallback) {
+  const json* v = find(key);
+  bool x;
+  if (!v) {
+    if (!fallback) fail(key, "true or false", "nothing (the key is required)");
+    x = *fallback;
+  } else {
+    if (!v->is_boolean()) fail(key, "true or false", describe_json(*v));
+    x = v->get<bool>();
+  }
+  used_[key] = x;
+  return x;
+}
+
+std::string JsonReader::string(const std::string& key, std::optional<std::string> fallback) {
+  const json* v = find(key);
+  std::string x;
+  if (!v) {
+    if (!fallback) fail(key, "a string", "nothing (the key is required)");
+    x = *fallback;
+  } else {
+    if (!v->is_string()) fail(key, "a string", describe_json(*v));
+    x = v->get<std::string>();
+  }
+  used_[key] = x;
+  return x;
+}
+
+std::string JsonReader::choice(const std::string& key, const std::vector<std::string>& choices,
+                               std::optional<std::string> fallback) {
+  const std::string x = string(key, std::move(fallback));
+  for (const auto& c : choices)
+    if (c == x) return x;
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : "|") + c;
+  fail(key, "one of " + list, "\"" + x + "\"");
+}
+
+double JsonReader::quantity(const std::string& key, Dimension dim,
+                            std::optional<std::string> fallback, double min, double max) {
+  const json* v = find(key);
+  std::string text;
+  if (!v) {
+    if (!fallback) fail(key, "a " + to_string(dim) + " with a unit", "nothing (the key is required)");
+    text = *fallback;
+  } else {
+    if (!v->is_string())
+      fail(key, "a " + to_string(dim) + " as a string with a unit, e.g. \"" +
+                    (accepted_units(dim).empty() ? std::string() : "1 " + accepted_units(dim)[0]) + "\"",
+           describe_json(*v));
+    text = v->get<std::string>();
+  }
+  const double x = parse_quantity(text, dim, file_ + ": " + key_path(key));
+  if (x < min || x > max) {
+    std::ostringstream range;
+    range << "a value in [" << min << ", " << max << "] (internal units: mm, g, ms, N, MPa)";
+    fail(key, range.str(), text);
+  }
+  used_[key] = text;
+  return x;
+}
+
+std::vector<double> JsonReader::number_list(const std::string& key,
+                                            std::optional<std::vector<double>> fallback) {
+  const json* v = find(key);
+  std::vector<double> out;
+  if (!v) {
+    if (!fallback) fail(key, "a list of numbers", "nothing (the key is required)");
+    out = *fallback;
+  } else {
+    if (!v->is_array()) fail(key, "a list of numbers", describe_json(*v));
+    for (const auto& e : *v) {
+      if (!e.is_number() || !std::isfinite(e.get<double>())) fail(key, "a list of finite numbers", describe_json(*v));
+      out.push_back(e.get<double>());
+    }
+  }
+  used_[key] = out;
+  return out;
+}
+
+std::vector<int> JsonReader::integer_list(const std::string& key,
+                                          std::optional<std::vector<int>> fallback) {
+  const json* v = find(key);
+  std::vector<int> out;
+  if (!v) {
+    if (!fallback) fail(key, "a list of integers", "nothing (the key is required)");
+    out = *fallback;
+  } else {
+    if (!v->is_array()) fail(key, "a list of integers", describe_json(*v));
+    for (const auto& e : *v) {
+      if (!e.is_number_integer()) fail(key, "a list of integers", describe_json(*v));
+      out.push_back(e.get<int>());
+    }
+  }
+  used_[key] = out;
+  return out;
+}
+
+JsonReader JsonReader::object(const std::string& key) {
+  read_.insert(key);
+  auto it = object_.find(key);
+  static const json empty = json::object();
+  if (it == object_.end() || it->is_null()) return JsonReader(empty, file_, key_path(key));
+  if (!it->is_object()) fail(key, "an object", describe_json(*it));
+  return JsonReader(*it, file_, key_path(key));
+}
+
+const json& JsonReader::raw(const std::string& key) {
+  read_.insert(key);
+  auto it = object_.find(key);
+  if (it == object_.end()) fail(key, "a value", "nothing (the key is required)");
+  used_[key] = *it;
+  return *it;
+}
+
+json JsonReader::finish() const {
+  for (auto it = object_.begin(); it != object_.end(); ++it) {
+    if (read_.count(it.key()) == 0) {
+      std::string known;
+      for (const auto& k : read_) known += (known.empty() ? "" : ", ") + k;
+      fail(it.key(), "a known key (" + known + ")", "an unknown key");
+    }
+  }
+  return used_;
+}
+
+}  // namespace valve

@@ -1,0 +1,76 @@
+#pragma once
+// Validating reader for one JSON object of a config. Every key read is checked for
+// type and range, defaults are filled in, the values actually used are recorded (for
+// the stage summary), and finish() rejects keys nobody asked for (typos).
+// Errors are one line: "<file>: <path.key>: expected ..., found ...".
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "valve/core/units.hpp"
+
+namespace valve {
+
+using json = nlohmann::json;
+
+/// Parses a JSON file; malformed JSON becomes an InputError naming file and line.
+json load_json_file(const std::filesystem::path& path);
+
+class JsonReader {
+ public:
+  /// `file` names the source for messages; `path` is the key path of `object` in it.
+  JsonReader(const json& object, std::string file, std::string path = "");
+
+  bool has(const std::string& key) const;
+
+  double number(const std::string& key, std::optional<double> fallback = std::nullopt,
+                double min = -1e300, double max = 1e300);
+  int integer(const std::string& key, std::optional<int> fallback = std::nullopt,
+              int min = -2147483647, int max = 2147483647);
+  bool boolean(const std::string& key, std::optional<bool> fallback = std::nullopt);
+  std::string string(const std::string& key, std::optional<std::string> fallback = std::nullopt);
+  /// A string that must be one of `choices`.
+  std::string choice(const std::string& key, const std::vector<std::string>& choices,
+                     std::optional<std::string> fallback = std::nullopt);
+  /// A physical quantity "<number> <unit>"; `fallback` is text too, e.g. "80 mmHg".
+  /// Bare numbers are rejected: the unit would be ambiguous.
+  double quantity(const std::string& key, Dimension dim,
+                  std::optional<std::string> fallback = std::nullopt, double min = -1e300,
+                  double max = 1e300);
+  std::vector<double> number_list(const std::string& key,
+                                  std::optional<std::vector<double>> fallback = std::nullopt);
+  std::vector<int> integer_list(const std::string& key,
+                                std::optional<std::vector<int>> fallback = std::nullopt);
+  /// A sub-object (empty if absent). Record its values with record(key, child.finish()).
+  JsonReader object(const std::string& key);
+  /// The raw value (marked as read) for callers that parse it themselves.
+  const json& raw(const std::string& key);
+
+  /// Records a derived value in the "used" record without reading it.
+  void record(const std::string& key, const json& value) { used_[key] = value; }
+  /// Throws on any key that was not read. Returns the values used (after defaults).
+  json finish() const;
+  /// Values used so far.
+  const json& used() const { return used_; }
+
+  [[noreturn]] void fail(const std::string& key, const std::string& expected,
+                         const std::string& found) const;
+  std::string key_path(const std::string& key) const;
+  const std::string& file() const { return file_; }
+
+ private:
+  const json* find(const std::string& key);
+
+  const json& object_;
+  std::string file_, path_;
+  std::set<std::string> read_;
+  json used_ = json::object();
+};
+
+/// Short description of a JSON value's type and content for "found ..." messages.
+std::string describe_json(const json& value);
+
+}  // namespace valve

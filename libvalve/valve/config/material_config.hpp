@@ -1,0 +1,41 @@
+#pragma once
+// Leaflet material description: a Fung law (seed Eq. 3.1-3.3) and the bilinear curves the
+// mass-spring model uses, either fitted from the Fung law or given directly (Table 5.1).
+// Presets live in configs/materials/<name>.json with their literature source.
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "valve/config/json_reader.hpp"
+#include "valve/material/bilinear_fit.hpp"
+#include "valve/material/material_law.hpp"
+
+namespace valve {
+
+struct MaterialConfig {
+  std::string name;
+  std::string source;              // literature source of the values
+  std::optional<FungParameters> fung;
+  std::optional<BilinearParameters> bilinear_given;  // used as is by the mass-spring model
+  BilinearFitOptions fit;          // used when the bilinear curves are fitted from Fung
+  std::optional<double> thickness; // mm
+  std::optional<double> density;   // g/mm³
+
+  /// The bilinear curves for the mass-spring model (given, or fitted from the Fung law).
+  BilinearParameters bilinear() const;
+  std::shared_ptr<const MaterialLaw> law() const;  // throws if no Fung law is given
+};
+
+/// Parses a material object (inline in a scene or a preset file).
+MaterialConfig parse_material(JsonReader& r);
+
+/// Directory of the shipped presets: $VALVE_CONFIG_DIR, else the source tree's configs/.
+std::filesystem::path config_directory();
+
+/// Loads a material from a value that is an object, a preset name or a .json path
+/// (relative paths are taken from `base_dir`). `where` names the key for messages.
+MaterialConfig load_material(const json& value, const std::string& file, const std::string& where,
+                             const std::filesystem::path& base_dir, json* used);
+
+}  // namespace valve

@@ -1,0 +1,163 @@
+#include "valve/config/scene_config.hpp"
+
+#include "valve/core/error.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+std::string to_string(ModelKind m) { return m == ModelKind::mass_spring ? "mass_spring" : "membrane_fe"; }
+
+namespace {
+
+void parse_bdf2(JsonReader& r, Bdf2Options& o) {
+  o.truncation_tolerance = r.quantity("truncation_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
+  o.displacement_tolerance = r.quantity("displacement_tolerance", Dimension::length, std::string("1e-5 mm"), 1e-15, 10);
+  o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-3, 0.0, 1.0);
+  o.quiet_steps = r.integer("quiet_steps", 3, 1, 1000000);
+  o.initial_step = r.quantity("initial_step", Dimension::time, std::string("0.001 ms"), 1e-12, 1e6);
+  o.min_step = r.quantity("min_step", Dimension::time, std::string("1e-10 ms"), 1e-20, 1e6);
+  o.max_step = r.quantity("max_step", Dimension::time, std::string("50 ms"), 1e-12, 1e9);
+  o.min_steps = r.integer("min_steps", 10, 0, 1000000);
+  o.max_steps = r.integer("max_steps", 200000, 1, 2000000000);
+  o.max_time = r.quantity("max_time", Dimension::time, std::string("1e6 ms"), 1e-9, 1e15);
+  o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
+  o.adaptive = r.boolean("adaptive", true);
+  o.linear_solver = parse_linear_solver(
+      r.choice("linear_solver", {"cholmod_llt", "cholmod_ldlt", "cg", "bicgstab", "lu"}, std::string("cholmod_ldlt")));
+  o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
+  o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
+}
+
+void parse_static(JsonReader& r, StaticOptions& o) {
+  o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-9, 1e-16, 1.0);
+  o.max_newton_iterations = r.integer("max_newton_iterations", 40, 1, 100000);
+  o.initial_increment = r.number("initial_increment", 0.25, 1e-9, 1.0);
+  o.min_increment = r.number("min_increment", 1e-5, 1e-15, 1.0);
+  o.max_increments = r.integer("max_increments", 2000, 1, 100000000);
+  o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
+  o.linear_solver = parse_linear_solver(
+      r.choice("linear_solver", {"cholmod_llt", "cholmod_ldlt", "cg", "bicgstab", "lu"}, std::string("lu")));
+  o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
+  o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
+}
+
+}  // namespace
+
+SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& base_dir) {
+  JsonReader r(j, file);
+  SceneConfig sc;
+  sc.file = file;
+  const std::string mesh = r.string("mesh");
+  sc.mesh_path = fs::path(mesh).is_absolute() ? fs::path(mesh) : base_dir / mesh;
+  sc.model = r.choice("model", {"mass_spring", "membrane_fe"}) == "mass_spring" ? ModelKind::mass_spring
+                                                                                : ModelKind::membrane_fe;
+  {
+    json used;
+    sc.material = load_material(r.raw("material"), file, "material", base_dir, &used);
+    r.record("material", used);
+  }
+  sc.thickness = r.quantity("thickness", Dimension::length,
+                            sc.material.thickness ? std::optional<std::string>(std::to_string(*sc.material.thickness) + " mm")
+                                                  : std::optional<std::string>("0.5 mm"),
+                            1e-6, 100);
+  sc.density = r.quantity("density", Dimension::density,
+                          sc.material.density ? std::optional<std::string>(std::to_string(*sc.material.density) + " g/mm^3")
+                                              : std::optional<std::string>("1060 kg/m^3"),
+                          1e-15, 1);
+  if (r.has("pressure")) {
+    JsonReader p = r.object("pressure");
+    PressureConfig pc;
+    pc.value = p.quantity("value", Dimension::pressure, std::nullopt, 0.0, 1e3);
+    pc.along_normal = p.choice("direction", {"along_normal", "against_normal"}, std::string("along_normal")) == "along_normal";
+    r.record("pressure", p.finish());
+    sc.pressure = pc;
+  }
+  if (r.has("edge_loads")) {
+    JsonReader e = r.object("edge_loads");
+    EdgeLoadConfig ec;
+    ec.stress_x = e.quantity("stress_x", Dimension::pressure, std::string("0 MPa"), 0.0, 1e3);
+    ec.stress_y = e.quantity("stress_y", Dimension::pressure, std::string("0 MPa"), 0.0, 1e3);
+    r.record("edge_loads", e.finish());
+    sc.edge_loads = ec;
+  }
+  if (r.has("damping")) {
+    JsonReader d = r.object("damping");
+    DampingConfig dc;
+    const std::string type = d.choice("type", {"critical", "mass_proportional"}, std::string("critical"));
+    if (type == "critical") {
+      dc.mode = DampingTerm::Mode::critical;
+      dc.factor = d.number("ratio", 1.0, 0.0, 1e6);
+    } else {
+      dc.mode = DampingTerm::Mode::mass_proportional;
+      dc.factor = d.quantity("rate", Dimension::rate, std::nullopt, 0.0, 1e12);
+    }
+    r.record("damping", d.finish());
+    sc.damping = dc;
+  }
+  {
+    JsonReader f = r.object("fixed");
+    sc.fixed.use_node_roles = f.boolean("node_roles", true);
+    sc.fixed.nodes = f.integer_list("nodes", std::vector<int>{});
+    sc.fixed.planar = f.boolean("planar", false);
+    sc.fixed.pin_rigid_in_plane = f.boolean("pin_rigid_in_plane", false);
+    r.record("fixed", f.finish());
+  }
+  {
+    JsonReader l = r.object("load");
+    sc.load_increments = l.number_list("increments", std::vector<double>{1.0});
+    if (sc.load_increments.empty()) l.fail("increments", "a non-empty list", "[]");
+    for (size_t k = 0; k < sc.load_increments.size(); ++k)
+      if (sc.load_increments[k] <= 0 || (k > 0 && sc.load_increments[k] <= sc.load_increments[k - 1]))
+        l.fail("increments", "increasing positive load factors", describe_json(l.used().at("increments")));
+    r.record("load", l.finish());
+  }
+  {
+    JsonReader s = r.object("solver");
+    sc.solver = s.choice("type", {"bdf2", "static"}, std::string("bdf2")) == "bdf2" ? SolverKind::bdf2 : SolverKind::static_newton;
+    if (sc.solver == SolverKind::bdf2) {
+      JsonReader b = s.object("bdf2");
+      parse_bdf2(b, sc.bdf2);
+      s.record("bdf2", b.used());
+      b.finish();
+    } else {
+      JsonReader b = s.object("static");
+      parse_static(b, sc.statics);
+      s.record("static", b.used());
+      b.finish();
+    }
+    r.record("solver", s.finish());
+  }
+  if (r.has("monitor")) {
+    const json& m = r.raw("monitor");
+    if (m.is_string() && m == "all") {
+      sc.monitor.kind = MonitorConfig::Kind::all;
+    } else if (m.is_string() && m == "free_edge_middle") {
+      sc.monitor.kind = MonitorConfig::Kind::free_edge_middle;
+    } else if (m.is_number_integer() && m.get<int>() >= 0) {
+      sc.monitor.kind = MonitorConfig::Kind::node;
+      sc.monitor.node = m.get<int>();
+    } else if (m.is_array() && m.size() == 3 && m[0].is_number() && m[1].is_number() && m[2].is_number()) {
+      sc.monitor.kind = MonitorConfig::Kind::nearest_point;
+      sc.monitor.point = Vec3(m[0].get<double>(), m[1].get<double>(), m[2].get<double>());
+    } else {
+      r.fail("monitor", "\"all\", \"free_edge_middle\", a node index or a point [x, y, z] in mm", describe_json(m));
+    }
+  } else {
+    r.record("monitor", "all");
+  }
+  {
+    JsonReader o = r.object("output");
+    sc.time_series = o.boolean("time_series", false);
+    sc.time_series_every = o.integer("every", 10, 1, 1000000);
+    r.record("output", o.finish());
+  }
+  sc.used = r.finish();
+  return sc;
+}
+
+SceneConfig load_scene(const fs::path& file) {
+  const json j = load_json_file(file);
+  return parse_scene(j, file.string(), file.parent_path());
+}
+
+}  // namespace valve

@@ -1,0 +1,119 @@
+#include "valve/core/cli.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/error.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+namespace {
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& flags,
+                         const std::vector<std::string>& switches) {
+  program_ = argc > 0 ? fs::path(argv[0]).filename().string() : "valve";
+  auto is_in = [](const std::vector<std::string>& v, const std::string& s) {
+    for (const auto& x : v)
+      if (x == s) return true;
+    return false;
+  };
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a.rfind("--", 0) != 0) {
+      positional_.push_back(a);
+      continue;
+    }
+    std::string value;
+    const auto eq = a.find('=');
+    if (eq != std::string::npos) {
+      value = a.substr(eq + 1);
+      a = a.substr(0, eq);
+    }
+    const std::string name = a.substr(2);
+    if (is_in(switches, name)) {
+      values_[name] = "true";
+    } else if (is_in(flags, name)) {
+      if (eq == std::string::npos) {
+        if (i + 1 >= argc) throw InputError(program_ + ": --" + name + ": expected a value, found the end of the command line");
+        value = argv[++i];
+      }
+      values_[name] = value;
+    } else {
+      std::string known;
+      for (const auto& f : flags) known += " --" + f;
+      for (const auto& f : switches) known += " --" + f;
+      throw InputError(program_ + ": " + a + ": expected one of" + known + ", found an unknown option");
+    }
+  }
+}
+
+std::optional<std::string> CommandLine::get(const std::string& flag) const {
+  auto it = values_.find(flag);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::string CommandLine::require(const std::string& flag) const {
+  auto v = get(flag);
+  if (!v) throw InputError(program_ + ": --" + flag + ": expected a value, found nothing (the option is required)");
+  return *v;
+}
+
+bool CommandLine::has(const std::string& flag) const { return values_.count(flag) > 0; }
+
+StageSummary::StageSummary(std::string stage, fs::path out_dir)
+    : stage_(std::move(stage)), out_(std::move(out_dir)), start_(now_seconds()) {
+  doc_ = {{"stage", stage_}, {"status", "ok"}, {"inputs", nlohmann::json::array()},
+          {"parameters", nlohmann::json::object()}, {"metrics", nlohmann::json::object()}};
+}
+
+void StageSummary::add_input(const std::string& role, const fs::path& path) {
+  doc_["inputs"].push_back({{"role", role}, {"path", path.string()}, {"sha256", sha256_file(path)}});
+}
+
+void StageSummary::set_status(const std::string& status, const std::string& reason) {
+  doc_["status"] = status;
+  if (!reason.empty()) doc_["reason"] = reason;
+}
+
+int scrub_non_finite(nlohmann::json& j) {
+  int n = 0;
+  if (j.is_number_float() && !std::isfinite(j.get<double>())) {
+    j = nullptr;
+    return 1;
+  }
+  if (j.is_structured())
+    for (auto& e : j) n += scrub_non_finite(e);
+  return n;
+}
+
+void StageSummary::write() {
+  doc_["wall_time_s"] = now_seconds() - start_;
+  const int replaced = scrub_non_finite(doc_);
+  if (replaced > 0) doc_["non_finite_values_replaced_by_null"] = replaced;
+  write_file_atomic(out_ / (stage_ + ".summary.json"), doc_.dump(2) + "\n");
+}
+
+int run_stage(const std::string& program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return 2;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "%s: numerical failure: %s\n", program.c_str(), e.what());
+    return 3;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace valve

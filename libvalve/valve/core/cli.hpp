@@ -1,0 +1,56 @@
+#pragma once
+// The stage command-line contract: `valve-<stage> [--config FILE.json] [--flags] --out DIR`.
+// Flags override the config. Exit codes: 0 ok, 2 bad input or config, 3 numerical failure.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace valve {
+
+class CommandLine {
+ public:
+  /// `flags` lists the accepted --options taking a value; `switches` those without one.
+  CommandLine(int argc, char** argv, const std::vector<std::string>& flags, const std::vector<std::string>& switches);
+  std::optional<std::string> get(const std::string& flag) const;
+  std::string require(const std::string& flag) const;
+  bool has(const std::string& flag) const;
+  const std::vector<std::string>& positional() const { return positional_; }
+  std::string program() const { return program_; }
+
+ private:
+  std::string program_;
+  std::map<std::string, std::string> values_;
+  std::vector<std::string> positional_;
+};
+
+/// Collects a stage's summary and writes DIR/<stage>.summary.json atomically.
+class StageSummary {
+ public:
+  StageSummary(std::string stage, std::filesystem::path out_dir);
+  void add_input(const std::string& role, const std::filesystem::path& path);
+  nlohmann::json& parameters() { return doc_["parameters"]; }
+  nlohmann::json& metrics() { return doc_["metrics"]; }
+  void set_status(const std::string& status, const std::string& reason = "");
+  void write();
+  const std::filesystem::path& out_dir() const { return out_; }
+
+ private:
+  std::string stage_;
+  std::filesystem::path out_;
+  nlohmann::json doc_;
+  double start_;
+};
+
+/// Runs a stage body and maps exceptions to the exit-code contract, printing one line
+/// "<program>: error: <message>" on stderr.
+int run_stage(const std::string& program, const std::function<int()>& body);
+
+/// Replaces non-finite numbers by null, recursively (JSON has no NaN; a summary must
+/// never carry one silently). Returns the number of values replaced.
+int scrub_non_finite(nlohmann::json& j);
+
+}  // namespace valve

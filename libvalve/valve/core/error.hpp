@@ -1,0 +1,35 @@
+#pragma once
+// The small exception hierarchy thrown at file, config and API boundaries.
+// Stages map InputError to exit code 2 and NumericalError to exit code 3.
+#include <stdexcept>
+#include <string>
+
+namespace valve {
+
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Bad input: an unreadable file, a malformed config, a value out of range.
+class InputError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// A numerical failure that leaves no usable result (not a mere non-convergence,
+/// which is reported as a status).
+class NumericalError : public Error {
+ public:
+  using Error::Error;
+};
+
+/// One-line message "<where>: <key>: expected <expected>, found <found>".
+/// Empty parts are left out.
+std::string describe_problem(const std::string& where, const std::string& key,
+                             const std::string& expected, const std::string& found);
+
+[[noreturn]] void throw_input_error(const std::string& where, const std::string& key,
+                                    const std::string& expected, const std::string& found);
+
+}  // namespace valve

@@ -1,0 +1,263 @@
+#include "valve/io/mesh_io.hpp"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataSetSurfaceFilter.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkGenericDataObjectReader.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkPLYReader.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataWriter.h>
+#include <vtkSTLReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLPolyDataReader.h>
+#include <vtkXMLPolyDataWriter.h>
+#include <vtkXMLUnstructuredGridReader.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/error.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string lower_extension(const fs::path& p) {
+  std::string e = p.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
+  return e;
+}
+
+vtkSmartPointer<vtkPolyData> to_polydata(vtkDataSet* ds) {
+  if (auto* pd = vtkPolyData::SafeDownCast(ds)) return pd;
+  vtkNew<vtkDataSetSurfaceFilter> surf;
+  surf->SetInputData(ds);
+  surf->Update();
+  return surf->GetOutput();
+}
+
+vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
+  // VTK's own multi-line messages would break the one-line error contract; we check every
+  // result ourselves and report in one line.
+  vtkObject::GlobalWarningDisplayOff();
+  const std::string file = path.string();
+  if (!fs::exists(path)) throw_input_error(file, "", "an existing mesh file", "no such file");
+  const std::string ext = lower_extension(path);
+  vtkSmartPointer<vtkDataSet> ds;
+  // VTK readers print to stderr and return empty data on failure; check the result.
+  if (ext == ".vtp") {
+    vtkNew<vtkXMLPolyDataReader> r;
+    r->SetFileName(file.c_str());
+    if (!r->CanReadFile(file.c_str())) throw_input_error(file, "", "a VTK XML PolyData file", "unreadable content");
+    r->Update();
+    ds = r->GetOutput();
+  } else if (ext == ".vtu") {
+    vtkNew<vtkXMLUnstructuredGridReader> r;
+    r->SetFileName(file.c_str());
+    if (!r->CanReadFile(file.c_str())) throw_input_error(file, "", "a VTK XML UnstructuredGrid file", "unreadable content");
+    r->Update();
+    ds = r->GetOutput();
+  } else if (ext == ".vtk") {
+    vtkNew<vtkGenericDataObjectReader> r;
+    r->SetFileName(file.c_str());
+    r->Update();
+    ds = vtkDataSet::SafeDownCast(r->GetOutput());
+    if (!ds) throw_input_error(file, "", "a legacy VTK data set", "unreadable content");
+  } else if (ext == ".stl") {
+    vtkNew<vtkSTLReader> r;
+    r->SetFileName(file.c_str());
+    r->Update();
+    ds = r->GetOutput();
+  } else if (ext == ".ply") {
+    vtkNew<vtkPLYReader> r;
+    r->SetFileName(file.c_str());
+    if (!r->CanReadFile(file.c_str())) throw_input_error(file, "", "a PLY file", "unreadable content");
+    r->Update();
+    ds = r->GetOutput();
+  } else if (ext == ".obj") {
+    vtkNew<vtkOBJReader> r;
+    r->SetFileName(file.c_str());
+    r->Update();
+    ds = r->GetOutput();
+  } else {
+    throw_input_error(file, "extension", ".vtp|.vtk|.vtu|.stl|.ply|.obj", "\"" + ext + "\"");
+  }
+  if (!ds) throw_input_error(file, "", "a mesh", "nothing readable");
+  return to_polydata(ds);
+}
+
+void add_int_point_array(vtkPolyData* pd, const char* name, const std::vector<int>& v) {
+  vtkNew<vtkIntArray> a;
+  a->SetName(name);
+  a->SetNumberOfValues(static_cast<vtkIdType>(v.size()));
+  for (size_t i = 0; i < v.size(); ++i) a->SetValue(static_cast<vtkIdType>(i), v[i]);
+  pd->GetPointData()->AddArray(a);
+}
+
+void add_double_array(vtkDataSetAttributes* attr, const std::string& name, const Eigen::MatrixXd& m) {
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name.c_str());
+  a->SetNumberOfComponents(static_cast<int>(m.cols()));
+  a->SetNumberOfTuples(m.rows());
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index c = 0; c < m.cols(); ++c) {
+      // No NaN is written silently: non-finite values are an error upstream.
+      if (!std::isfinite(m(i, c))) throw NumericalError("write_mesh: array " + name + " has a non-finite value");
+      a->SetComponent(i, static_cast<int>(c), m(i, c));
+    }
+  attr->AddArray(a);
+}
+
+}  // namespace
+
+TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
+  const std::string file = path.string();
+  vtkSmartPointer<vtkPolyData> pd = read_polydata(path);
+  TriMesh m;
+  const vtkIdType np = pd->GetNumberOfPoints();
+  m.points.resize(np, 3);
+  for (vtkIdType i = 0; i < np; ++i) {
+    double p[3];
+    pd->GetPoint(i, p);
+    m.points.row(i) << p[0], p[1], p[2];
+  }
+  if (pd->GetNumberOfVerts() + pd->GetNumberOfLines() > 0 && pd->GetNumberOfPolys() == 0)
+    throw_input_error(file, "cells", "triangles", "only vertices or lines");
+  if (pd->GetNumberOfStrips() > 0) throw_input_error(file, "cells", "triangles", "triangle strips");
+  vtkCellArray* polys = pd->GetPolys();
+  vtkNew<vtkIdList> ids;
+  polys->InitTraversal();
+  vtkIdType cell = 0;
+  while (polys->GetNextCell(ids)) {
+    if (ids->GetNumberOfIds() != 3)
+      throw_input_error(file, "cell " + std::to_string(cell), "a triangle",
+                        "a polygon with " + std::to_string(ids->GetNumberOfIds()) + " points");
+    m.triangles.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
+                             static_cast<int>(ids->GetId(2)));
+    ++cell;
+  }
+  if (m.triangles.empty()) throw_input_error(file, "cells", "at least one triangle", "none");
+  // The cell data of a polydata is ordered verts, lines, polys, strips: polys come first
+  // here because we rejected verts and lines above.
+  if (auto* fib = pd->GetCellData()->GetArray("FiberDirection"); fib && fib->GetNumberOfComponents() == 3 &&
+                                                                 fib->GetNumberOfTuples() == m.num_triangles()) {
+    m.fiber.resize(m.num_triangles(), 3);
+    for (int t = 0; t < m.num_triangles(); ++t)
+      for (int c = 0; c < 3; ++c) m.fiber(t, c) = fib->GetComponent(t, c);
+  }
+  if (auto* a = pd->GetPointData()->GetArray("NodeRole"); a && a->GetNumberOfTuples() == np) {
+    for (vtkIdType i = 0; i < np; ++i) {
+      const int r = static_cast<int>(a->GetComponent(i, 0));
+      if (r < 0 || r > 2) throw_input_error(file, "NodeRole of point " + std::to_string(i), "0 (free), 1 (fixed) or 2 (prescribed)", std::to_string(r));
+      m.roles.push_back(static_cast<NodeRole>(r));
+    }
+  }
+  if (auto* a = pd->GetPointData()->GetArray("BoundaryType"); a && a->GetNumberOfTuples() == np)
+    for (vtkIdType i = 0; i < np; ++i) m.boundary.push_back(static_cast<BoundaryType>(static_cast<int>(a->GetComponent(i, 0))));
+  if (auto* a = pd->GetCellData()->GetArray("Leaflet"); a && a->GetNumberOfTuples() == m.num_triangles())
+    for (int t = 0; t < m.num_triangles(); ++t) m.leaflet.push_back(static_cast<int>(a->GetComponent(t, 0)));
+  if (extra) {
+    for (int k = 0; k < pd->GetPointData()->GetNumberOfArrays(); ++k) {
+      vtkDataArray* a = pd->GetPointData()->GetArray(k);
+      if (!a || !a->GetName()) continue;
+      NamedArray na{a->GetName(), Eigen::MatrixXd(a->GetNumberOfTuples(), a->GetNumberOfComponents()), false};
+      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+        for (int c = 0; c < a->GetNumberOfComponents(); ++c) na.values(i, c) = a->GetComponent(i, c);
+      extra->push_back(std::move(na));
+    }
+  }
+  m.fill_defaults();
+  return m;
+}
+
+void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* positions,
+                const std::vector<NamedArray>& extra) {
+  const std::string ext = lower_extension(path);
+  if (ext != ".vtp" && ext != ".vtk") throw_input_error(path.string(), "extension", ".vtp or .vtk", "\"" + ext + "\"");
+  const MatX3& x = positions ? *positions : mesh.points;
+  if (!x.allFinite()) throw NumericalError(path.string() + ": refusing to write non-finite coordinates");
+  vtkNew<vtkPolyData> pd;
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(x.rows());
+  for (Eigen::Index i = 0; i < x.rows(); ++i) pts->SetPoint(i, x(i, 0), x(i, 1), x(i, 2));
+  pd->SetPoints(pts);
+  vtkNew<vtkCellArray> polys;
+  for (const auto& t : mesh.triangles) {
+    const vtkIdType ids[3] = {t[0], t[1], t[2]};
+    polys->InsertNextCell(3, ids);
+  }
+  pd->SetPolys(polys);
+  if (mesh.fiber.rows() == mesh.num_triangles()) add_double_array(pd->GetCellData(), "FiberDirection", mesh.fiber);
+  if (static_cast<int>(mesh.roles.size()) == mesh.num_nodes()) {
+    std::vector<int> r(mesh.roles.size());
+    std::transform(mesh.roles.begin(), mesh.roles.end(), r.begin(), [](NodeRole v) { return static_cast<int>(v); });
+    add_int_point_array(pd, "NodeRole", r);
+  }
+  if (static_cast<int>(mesh.boundary.size()) == mesh.num_nodes()) {
+    std::vector<int> b(mesh.boundary.size());
+    std::transform(mesh.boundary.begin(), mesh.boundary.end(), b.begin(), [](BoundaryType v) { return static_cast<int>(v); });
+    add_int_point_array(pd, "BoundaryType", b);
+  }
+  if (static_cast<int>(mesh.leaflet.size()) == mesh.num_triangles()) {
+    vtkNew<vtkIntArray> a;
+    a->SetName("Leaflet");
+    a->SetNumberOfValues(mesh.num_triangles());
+    for (int t = 0; t < mesh.num_triangles(); ++t) a->SetValue(t, mesh.leaflet[t]);
+    pd->GetCellData()->AddArray(a);
+  }
+  for (const auto& a : extra) {
+    const Eigen::Index expected = a.per_cell ? mesh.num_triangles() : x.rows();
+    if (a.values.rows() != expected) throw Error("write_mesh: array " + a.name + " has the wrong length");
+    add_double_array(a.per_cell ? static_cast<vtkDataSetAttributes*>(pd->GetCellData())
+                                : static_cast<vtkDataSetAttributes*>(pd->GetPointData()),
+                     a.name, a.values);
+  }
+  vtkNew<vtkStringArray> space;
+  space->SetName("SPACE");
+  space->InsertNextValue("LPS");
+  pd->GetFieldData()->AddArray(space);
+  write_via_temp(path, [&](const fs::path& tmp) {
+    int ok;
+    if (ext == ".vtp") {
+      vtkNew<vtkXMLPolyDataWriter> w;
+      w->SetFileName(tmp.string().c_str());
+      w->SetInputData(pd);
+      w->SetDataModeToAppended();
+      w->EncodeAppendedDataOff();
+      ok = w->Write();
+    } else {
+      vtkNew<vtkPolyDataWriter> w;
+      w->SetFileName(tmp.string().c_str());
+      w->SetInputData(pd);
+      w->SetFileTypeToBinary();
+      ok = w->Write();
+    }
+    if (ok != 1) throw Error(path.string() + ": VTK could not write the file");
+  });
+}
+
+void write_pvd(const fs::path& path, const std::vector<std::string>& files, const std::vector<double>& times) {
+  std::ostringstream s;
+  s << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  s.precision(12);
+  for (size_t i = 0; i < files.size(); ++i)
+    s << "    <DataSet timestep=\"" << times[i] << "\" file=\"" << files[i] << "\"/>\n";
+  s << "  </Collection>\n</VTKFile>\n";
+  write_file_atomic(path, s.str());
+}
+
+}  // namespace valve

@@ -1,0 +1,35 @@
+#pragma once
+// Reading and writing triangle meshes through VTK. Reads .vtp (default), .vtk, .vtu,
+// .stl, .ply and .obj; writes .vtp with named point and cell arrays:
+//   FiberDirection (cell, 3), NodeRole (point), BoundaryType (point), Leaflet (cell),
+// plus any extra arrays (Displacement, Stretch, GreenStrain, ...), and the field SPACE=LPS.
+#include <Eigen/Core>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "valve/mesh/tri_mesh.hpp"
+
+namespace valve {
+
+struct NamedArray {
+  std::string name;
+  Eigen::MatrixXd values;  // one row per point (or cell), one column per component
+  bool per_cell = false;
+};
+
+/// Reads a triangle mesh. Throws InputError (file, what was expected, what was found) for
+/// unreadable files, unknown extensions, non-triangle cells and meshes without cells.
+/// Arrays the file lacks are filled with defaults (TriMesh::fill_defaults).
+TriMesh read_mesh(const std::filesystem::path& path, std::vector<NamedArray>* extra = nullptr);
+
+/// Writes `mesh` with point coordinates `positions` (the rest positions if null) and the
+/// extra arrays, atomically. The extension must be .vtp (or .vtk for legacy readers).
+void write_mesh(const std::filesystem::path& path, const TriMesh& mesh, const MatX3* positions = nullptr,
+                const std::vector<NamedArray>& extra = {});
+
+/// Writes a ParaView .pvd collection that lists `files` (relative names) at `times`.
+void write_pvd(const std::filesystem::path& path, const std::vector<std::string>& files,
+               const std::vector<double>& times);
+
+}  // namespace valve

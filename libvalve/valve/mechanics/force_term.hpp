@@ -1,0 +1,43 @@
+#pragma once
+// The interface every force term implements. Terms know nothing of solvers: they add
+// nodal forces f(x, v) and, when asked, their Jacobians df/dx and df/dv into a pattern
+// built once from couplings(). The solver sees only the sum of terms.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "valve/core/types.hpp"
+#include "valve/mechanics/jacobian.hpp"
+
+namespace valve {
+
+/// What a force term is evaluated at. `load` scales external loads (load continuation
+/// and load increments); `time` is simulated time in ms.
+struct State {
+  const VecX& x;
+  const VecX& v;
+  double load = 1.0;
+  double time = 0.0;
+};
+
+class ForceTerm {
+ public:
+  virtual ~ForceTerm() = default;
+  virtual std::string name() const = 0;
+  /// Node pairs whose positions this term couples (for the Jacobian pattern).
+  virtual void couplings(std::vector<std::pair<int, int>>& pairs) const = 0;
+  /// Adds forces to f (length 3N); adds df/dx to dfdx and df/dv to dfdv when non-null.
+  virtual void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const = 0;
+  /// Potential energy (mJ) for conservative terms; terms without one return false.
+  virtual bool energy(const State& s, double& e) const {
+    (void)s, (void)e;
+    return false;
+  }
+  /// Whether df/dv is nonzero (damping).
+  virtual bool depends_on_velocity() const { return false; }
+  /// Whether this is an applied load (pressure, edge loads) rather than a material or
+  /// constraint response; solvers use the applied load to scale residual tolerances.
+  virtual bool is_external_load() const { return false; }
+};
+
+}  // namespace valve

@@ -1,0 +1,42 @@
+#include "valve/mechanics/pressure.hpp"
+
+#include <Eigen/Geometry>
+
+namespace valve {
+namespace {
+Mat3 cross_matrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+}  // namespace
+
+PressureTerm::PressureTerm(const TriMesh& mesh, double pressure, bool along_normal, std::vector<char> active)
+    : signed_pressure_(along_normal ? pressure : -pressure) {
+  for (int t = 0; t < mesh.num_triangles(); ++t)
+    if (active.empty() || active[t]) triangles_.push_back(mesh.triangles[t]);
+}
+
+void PressureTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
+  for (const auto& t : triangles_)
+    for (int a = 0; a < 3; ++a) pairs.emplace_back(t[a], t[(a + 1) % 3]);
+}
+
+void PressureTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
+  const double c = signed_pressure_ * s.load / 3.0;
+  for (const auto& t : triangles_) {
+    const Vec3 x1 = node3(s.x, t[0]), e1 = node3(s.x, t[1]) - x1, e2 = node3(s.x, t[2]) - x1;
+    const Vec3 force = c * 0.5 * e1.cross(e2);
+    for (int a = 0; a < 3; ++a) node3(f, t[a]) += force;
+    if (!dfdx) continue;
+    const Mat3 d2 = -0.5 * c * cross_matrix(e2), d3 = 0.5 * c * cross_matrix(e1);
+    const Mat3 d1 = -d2 - d3;
+    for (int a = 0; a < 3; ++a) {
+      dfdx->add(t[a], t[0], d1);
+      dfdx->add(t[a], t[1], d2);
+      dfdx->add(t[a], t[2], d3);
+    }
+  }
+}
+
+}  // namespace valve

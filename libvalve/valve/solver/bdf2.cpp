@@ -1,0 +1,204 @@
+#include "valve/solver/bdf2.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "valve/core/error.hpp"
+#include "valve/solver/constrained_system.hpp"
+
+namespace valve {
+
+Bdf2Integrator::Bdf2Integrator(MechanicalSystem& system, Bdf2Options options)
+    : sys_(system), opt_(std::move(options)) {
+  solver_ = make_linear_solver(opt_.linear_solver, opt_.iterative_tolerance, opt_.iterative_max_iterations);
+  monitor_ = opt_.monitor_nodes;
+  if (monitor_.empty())
+    for (int i = 0; i < sys_.num_nodes(); ++i)
+      if (!sys_.constrained()[3 * i]) monitor_.push_back(i);
+  h_ = opt_.initial_step;
+}
+
+void Bdf2Integrator::reset(const VecX& x0) {
+  x_ = x0;
+  x_prev_ = x0;
+  v_ = VecX::Zero(x0.size());
+  v_prev_ = v_;
+  t_ = 0;
+  h_ = opt_.initial_step;
+  h_hist_ = h_;
+}
+
+Bdf2Integrator::History Bdf2Integrator::resampled(double h_new) const {
+  History H{x_, v_, x_prev_, v_prev_, restart_};
+  if (restart_) return H;
+  if (std::abs(h_new - h_hist_) <= 1e-14 * h_hist_) return H;
+  // Quadratic through x(0) = x^n, x'(0) = v^n, x(-h_old) = x^{n-1}, evaluated at -h_new.
+  const double r = h_new / h_hist_;
+  H.x_prev = x_ - h_new * v_ + r * r * (x_prev_ - x_ + h_hist_ * v_);
+  H.v_prev = v_ - r * (v_ - v_prev_);
+  return H;
+}
+
+bool Bdf2Integrator::step(const History& in, double h, double load, History& out) {
+  const State s{in.x, in.v, load, t_};
+  if (!sys_.evaluate(s, f_, true, sys_.has_velocity_terms())) return false;
+  ++jacobians_;
+  sys_.update_critical_damping(s, f_);
+  const VecX& M = sys_.dof_masses();
+  const VecX delta = in.x - in.x_prev;
+  SparseMatrix A;
+  VecX b;
+  if (in.euler) {
+    A = (-h * h) * sys_.dfdx().matrix();
+    b = h * M.cwiseProduct(in.v) + (h * h) * f_;
+    if (sys_.has_velocity_terms()) {
+      const SparseMatrix& Dv = sys_.dfdv().matrix();
+      A = A - h * Dv;
+      b -= (h * h) * (Dv * in.v);
+    }
+  } else {
+    A = (-4.0 / 9.0 * h * h) * sys_.dfdx().matrix();
+    b = M.cwiseProduct(delta / 3.0 + (h / 9.0) * (8.0 * in.v - 2.0 * in.v_prev)) + (4.0 / 9.0 * h * h) * f_;
+    if (sys_.has_velocity_terms()) {
+      const SparseMatrix& Dv = sys_.dfdv().matrix();
+      A = A - (2.0 / 3.0 * h) * Dv;
+      b -= (4.0 / 9.0 * h * h) * (Dv * in.v) + (2.0 / 9.0 * h) * (Dv * delta);
+    }
+  }
+  for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += M[i];
+  apply_constraints(A, b, sys_.constrained());
+  if (solver_->needs_symmetric()) A = symmetric_part(A);
+  VecX dx;
+  if (!solver_->factorize(A) || !solver_->solve(b, dx)) return false;
+  out.x_prev = in.x;
+  out.v_prev = in.v;
+  out.x = in.x + dx;
+  out.v = in.euler ? VecX(dx / h) : VecX((1.5 * out.x - 2.0 * in.x + 0.5 * in.x_prev) / h);
+  out.euler = false;
+  for (int i = 0; i < out.v.size(); ++i)
+    if (sys_.constrained()[i]) out.v[i] = 0;
+  return out.x.allFinite() && out.v.allFinite();
+}
+
+double Bdf2Integrator::max_node_distance(const VecX& a, const VecX& b, bool monitors_only) const {
+  double m = 0;
+  if (monitors_only) {
+    for (int i : monitor_) m = std::max(m, (node3(a, i) - node3(b, i)).norm());
+  } else {
+    for (int i = 0; i < sys_.num_nodes(); ++i) m = std::max(m, (node3(a, i) - node3(b, i)).norm());
+  }
+  return m;
+}
+
+SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
+  const auto t_start = std::chrono::steady_clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
+  SolverSummary sum;
+  sum.linear_solver = solver_->name();
+  const long jac0 = jacobians_;
+  restart_ = true;  // the load may have changed: the acceleration jumps
+  int quiet = 0;
+  const double t0 = t_;
+  long steps = 0;
+  History big, half1, half2;
+  auto finish = [&](SolverStatus st, std::string reason) {
+    sum.status = st;
+    sum.reason = std::move(reason);
+    sum.steps = steps;
+    sum.jacobian_evaluations = jacobians_ - jac0;
+    sum.linear = solver_->stats();
+    sum.simulated_time_ms = t_ - t0;
+    sum.final_step_ms = h_;
+    VecX f;
+    const State s{x_, v_, load, t_};
+    sys_.evaluate(s, f, false, false);
+    // The static residual: the force left when velocities vanish (damping excluded).
+    if (auto* d = sys_.damping()) {
+      VecX fd = VecX::Zero(f.size());
+      d->add(s, fd, nullptr, nullptr);
+      f -= fd;
+    }
+    sum.max_free_force_N = sys_.max_free_force(f);
+    const VecX fe = sys_.external_force(s);
+    double fe_norm = 0, f_norm = 0;
+    for (int i = 0; i < f.size(); ++i)
+      if (!sys_.constrained()[i]) fe_norm += fe[i] * fe[i], f_norm += f[i] * f[i];
+    sum.relative_residual = fe_norm > 0 ? std::sqrt(f_norm / fe_norm) : std::sqrt(f_norm);
+    sum.wall_seconds = wall();
+    sum.term_timings = sys_.timings();
+    return sum;
+  };
+
+  while (true) {
+    if (steps >= opt_.max_steps) return finish(SolverStatus::not_converged, "max_steps reached");
+    if (t_ - t0 >= opt_.max_time) return finish(SolverStatus::not_converged, "max_time reached");
+    if (wall() >= opt_.max_wall_seconds) return finish(SolverStatus::not_converged, "max_wall_seconds reached");
+    if (h_ < opt_.min_step)
+      return finish(SolverStatus::failed, "step size fell below min_step (the model does not converge)");
+
+    double advanced = 0;
+    if (!opt_.adaptive) {
+      if (!step(resampled(h_), h_, load, half2)) {
+        h_ *= 0.5;  // a fixed-step run still survives a failed solve
+        ++sum.rejected_steps;
+        continue;
+      }
+      half1.x = x_;
+      advanced = h_;
+      h_hist_ = h_;
+    } else {
+      const bool ok_big = step(resampled(2 * h_), 2 * h_, load, big);
+      const bool ok_small = ok_big && step(resampled(h_), h_, load, half1);
+      bool ok = ok_small;
+      if (ok) {
+        const double save_t = t_;
+        t_ += h_;
+        History mid{half1.x, half1.v, half1.x_prev, half1.v_prev, false};
+        ok = step(mid, h_, load, half2);
+        t_ = save_t;
+      }
+      if (!ok) {
+        h_ *= 0.25;
+        ++sum.rejected_steps;
+        continue;
+      }
+      const double err = max_node_distance(half2.x, big.x, false);
+      const double scale = err > 0 ? 0.9 * std::cbrt(opt_.truncation_tolerance / err) : 2.0;
+      if (err > opt_.truncation_tolerance) {
+        h_ *= std::clamp(scale, 0.1, 0.5);
+        ++sum.rejected_steps;
+        continue;
+      }
+      advanced = 2 * h_;
+      h_hist_ = h_;
+      h_ = std::min(opt_.max_step, h_ * std::clamp(scale, 0.2, 2.0));
+    }
+    restart_ = false;
+    x_prev_ = half2.x_prev;
+    v_prev_ = half2.v_prev;
+    x_ = half2.x;
+    v_ = half2.v;
+    t_ += advanced;
+    steps += opt_.adaptive ? 2 : 1;
+    if (on_accepted) on_accepted(x_, t_);
+
+    sum.last_monitor_displacement_mm = max_node_distance(x_, half2.x_prev, true);
+    if (steps < opt_.min_steps) continue;
+    if (observer) {
+      if (observer(StepInfo{x_, v_, half2.x_prev, t_, h_hist_, steps}))
+        return finish(SolverStatus::ok, "observer criterion met");
+      continue;
+    }
+    quiet = sum.last_monitor_displacement_mm < opt_.displacement_tolerance ? quiet + 1 : 0;
+    if (quiet >= opt_.quiet_steps) {
+      if (opt_.relative_residual_tolerance > 0) {
+        SolverSummary probe = finish(SolverStatus::ok, "");
+        if (probe.relative_residual > opt_.relative_residual_tolerance) continue;
+      }
+      return finish(SolverStatus::ok, "monitor displacement per step below tolerance");
+    }
+  }
+}
+
+}  // namespace valve

@@ -1,0 +1,93 @@
+#pragma once
+// Semi-implicit second-order backward differences (seed Appendix, Eq. A.1-A.4) with
+// adaptive step size by step doubling. One step solves
+//   (M - 2/3 h ∂f/∂v - 4/9 h² ∂f/∂x) Δx = M[(x^n - x^{n-1})/3 + h/9 (8v^n - 2v^{n-1})]
+//        + 4/9 h² (f^n - ∂f/∂v v^n) - 2/9 h ∂f/∂v (x^n - x^{n-1})
+// (A.4 multiplied by M), then v^{n+1} = (1.5 x^{n+1} - 2 x^n + 0.5 x^{n-1}) / h.
+// Step doubling: one step of 2h and two of h from the same state; their difference
+// estimates the local error, the step is accepted when the largest nodal difference is
+// under the truncation tolerance, and h is scaled by 0.9 (tol/err)^(1/3), within [0.2, 2].
+// When h changes, the previous state is re-sampled at the new spacing by quadratic
+// interpolation through x^{n-1}, x^n and v^n. A run starts (and restarts after a load
+// change, where the acceleration jumps) with one implicit Euler step,
+//   (M - h ∂f/∂v - h² ∂f/∂x) Δx = h M v^n + h² (f^n - ∂f/∂v v^n),  v^{n+1} = Δx / h,
+// because a BDF2 step over the jump would make the velocity, and so the whole trajectory,
+// only first-order accurate.
+// Termination (seed): the monitor nodes move less than displacement_tolerance per step.
+// A single such step also happens at the turning point of an oscillation, so the rule must
+// hold on `quiet_steps` consecutive steps and the static residual |f|/|f_ext| must be below
+// relative_residual_tolerance.
+#include <functional>
+#include <memory>
+#include <vector>
+
+#include "valve/mechanics/mechanical_system.hpp"
+#include "valve/solver/linear_solver.hpp"
+#include "valve/solver/solver_summary.hpp"
+
+namespace valve {
+
+struct Bdf2Options {
+  double truncation_tolerance = 0.01;    // mm (seed: 1e-5 m)
+  double displacement_tolerance = 1e-5;  // mm per step at the monitor nodes (seed)
+  double relative_residual_tolerance = 1e-3;  // also require |f_free|/|f_ext_free| below this
+  int quiet_steps = 3;                   // consecutive steps that must satisfy the monitor rule
+  double initial_step = 1e-3;            // ms
+  double min_step = 1e-10;               // ms
+  double max_step = 50.0;                // ms
+  int min_steps = 10;                    // never declare convergence earlier
+  long max_steps = 200000;
+  double max_time = 1e6;                 // ms of simulated time
+  double max_wall_seconds = 600;
+  bool adaptive = true;                  // false: fixed step = initial_step, no doubling
+  LinearSolverType linear_solver = LinearSolverType::cholmod_ldlt;
+  double iterative_tolerance = 1e-10;
+  int iterative_max_iterations = 5000;
+  std::vector<int> monitor_nodes;        // empty: every free node
+};
+
+/// After each accepted step; returning true declares convergence.
+struct StepInfo {
+  const VecX& x;
+  const VecX& v;
+  const VecX& x_before;  // positions one (small) step earlier
+  double time, step;
+  long steps;
+};
+using StepObserver = std::function<bool(const StepInfo&)>;
+
+class Bdf2Integrator {
+ public:
+  Bdf2Integrator(MechanicalSystem& system, Bdf2Options options);
+  /// Starts at rest at positions x0.
+  void reset(const VecX& x0);
+  /// Integrates at load factor `load` until converged (monitor rule, or `observer` if given)
+  /// or a limit is hit. The state carries over to the next call (load increments).
+  SolverSummary run(double load, const StepObserver& observer = {});
+
+  const VecX& positions() const { return x_; }
+  const VecX& velocities() const { return v_; }
+  double time() const { return t_; }
+  /// Optional hook called after each accepted step (time series output, progress).
+  std::function<void(const VecX& x, double time)> on_accepted;
+
+ private:
+  struct History {
+    VecX x, v, x_prev, v_prev;
+    bool euler = false;  // no usable history: take an implicit Euler step
+  };
+  bool step(const History& in, double h, double load, History& out);
+  History resampled(double h_new) const;
+  double max_node_distance(const VecX& a, const VecX& b, bool monitors_only) const;
+
+  MechanicalSystem& sys_;
+  Bdf2Options opt_;
+  std::unique_ptr<LinearSolver> solver_;
+  VecX x_, v_, x_prev_, v_prev_, f_;
+  double t_ = 0, h_ = 0, h_hist_ = 0;  // h_hist_: spacing between x_prev_ and x_
+  std::vector<int> monitor_;
+  long jacobians_ = 0;
+  bool restart_ = true;  // next step is implicit Euler
+};
+
+}  // namespace valve

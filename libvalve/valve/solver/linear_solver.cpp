@@ -1,0 +1,136 @@
+#include "valve/solver/linear_solver.hpp"
+
+#include <Eigen/CholmodSupport>
+#include <Eigen/IterativeLinearSolvers>
+#include <Eigen/SparseLU>
+#include <chrono>
+
+#include "valve/core/error.hpp"
+
+namespace valve {
+namespace {
+
+double since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Direct solvers share the analyse-once / factorize-per-matrix pattern.
+template <class Decomposition>
+class DirectSolver final : public LinearSolver {
+ public:
+  DirectSolver(std::string name, bool symmetric) : name_(std::move(name)), symmetric_(symmetric) {}
+  bool needs_symmetric() const override { return symmetric_; }
+  std::string name() const override { return name_; }
+  bool factorize(const SparseMatrix& A) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    if (!analysed_ || A.nonZeros() != nnz_) {
+      dec_.analyzePattern(A);
+      analysed_ = true;
+      nnz_ = A.nonZeros();
+    }
+    dec_.factorize(A);
+    ++stats_.factorizations;
+    stats_.factor_seconds += since(t0);
+    ok_ = dec_.info() == Eigen::Success;
+    if (!ok_) ++stats_.failures;
+    return ok_;
+  }
+  bool solve(const VecX& b, VecX& x) override {
+    if (!ok_) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    x = dec_.solve(b);
+    ++stats_.solves;
+    stats_.solve_seconds += since(t0);
+    const bool good = dec_.info() == Eigen::Success && x.allFinite();
+    if (!good) ++stats_.failures;
+    return good;
+  }
+
+ private:
+  std::string name_;
+  bool symmetric_;
+  Decomposition dec_;
+  bool analysed_ = false, ok_ = false;
+  Eigen::Index nnz_ = -1;
+};
+
+template <class Krylov>
+class IterativeSolver final : public LinearSolver {
+ public:
+  IterativeSolver(std::string name, bool symmetric, double tol, int max_it)
+      : name_(std::move(name)), symmetric_(symmetric) {
+    it_.setTolerance(tol);
+    it_.setMaxIterations(max_it);
+  }
+  bool needs_symmetric() const override { return symmetric_; }
+  std::string name() const override { return name_; }
+  bool factorize(const SparseMatrix& A) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    it_.compute(A);
+    ++stats_.factorizations;
+    stats_.factor_seconds += since(t0);
+    ok_ = it_.info() == Eigen::Success;
+    if (!ok_) ++stats_.failures;
+    return ok_;
+  }
+  bool solve(const VecX& b, VecX& x) override {
+    if (!ok_) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    x = it_.solve(b);
+    ++stats_.solves;
+    stats_.iterations += it_.iterations();
+    stats_.solve_seconds += since(t0);
+    const bool good = it_.info() == Eigen::Success && x.allFinite();
+    if (!good) ++stats_.failures;
+    return good;
+  }
+
+ private:
+  std::string name_;
+  bool symmetric_;
+  Krylov it_;
+  bool ok_ = false;
+};
+
+}  // namespace
+
+LinearSolverType parse_linear_solver(const std::string& name) {
+  if (name == "cholmod_llt") return LinearSolverType::cholmod_llt;
+  if (name == "cholmod_ldlt") return LinearSolverType::cholmod_ldlt;
+  if (name == "cg") return LinearSolverType::cg;
+  if (name == "bicgstab") return LinearSolverType::bicgstab;
+  if (name == "lu") return LinearSolverType::lu;
+  throw InputError("linear solver: expected cholmod_llt|cholmod_ldlt|cg|bicgstab|lu, found \"" + name + "\"");
+}
+
+std::string to_string(LinearSolverType t) {
+  switch (t) {
+    case LinearSolverType::cholmod_llt: return "cholmod_llt";
+    case LinearSolverType::cholmod_ldlt: return "cholmod_ldlt";
+    case LinearSolverType::cg: return "cg";
+    case LinearSolverType::bicgstab: return "bicgstab";
+    case LinearSolverType::lu: return "lu";
+  }
+  return "?";
+}
+
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tol, int max_it) {
+  switch (type) {
+    case LinearSolverType::cholmod_llt:
+      return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_llt", true);
+    case LinearSolverType::cholmod_ldlt:
+      return std::make_unique<DirectSolver<Eigen::CholmodSimplicialLDLT<SparseMatrix>>>("cholmod_ldlt", true);
+    case LinearSolverType::lu:
+      return std::make_unique<DirectSolver<Eigen::SparseLU<SparseMatrix>>>("lu", false);
+    case LinearSolverType::cg:
+      return std::make_unique<IterativeSolver<
+          Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>>>(
+          "cg", true, tol, max_it);
+    case LinearSolverType::bicgstab:
+      return std::make_unique<IterativeSolver<Eigen::BiCGSTAB<SparseMatrix, Eigen::IncompleteLUT<double>>>>(
+          "bicgstab", false, tol, max_it);
+  }
+  throw InputError("linear solver: unknown type");
+}
+
+}  // namespace valve

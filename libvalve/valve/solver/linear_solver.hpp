@@ -1,0 +1,46 @@
+#pragma once
+// Linear solvers behind one interface: CHOLMOD supernodal Cholesky and simplicial LDLᵀ
+// (SuiteSparse), preconditioned conjugate gradients, BiCGStab and sparse LU (Eigen).
+// The symbolic analysis is done once per pattern; factorize() is called per matrix.
+#include <memory>
+#include <string>
+
+#include "valve/mechanics/jacobian.hpp"
+
+namespace valve {
+
+enum class LinearSolverType { cholmod_llt, cholmod_ldlt, cg, bicgstab, lu };
+
+LinearSolverType parse_linear_solver(const std::string& name);  // throws InputError
+std::string to_string(LinearSolverType t);
+
+struct LinearSolverStats {
+  long factorizations = 0;  // numeric factorizations (or preconditioner builds)
+  long solves = 0;
+  long iterations = 0;      // Krylov iterations (iterative solvers)
+  long failures = 0;        // factorizations or solves that failed
+  double factor_seconds = 0, solve_seconds = 0;
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  /// Cholesky and CG need a symmetric matrix; callers pass the symmetric part.
+  virtual bool needs_symmetric() const = 0;
+  /// Factorizes A (analysing the pattern on first use). False if A is singular or, for
+  /// Cholesky, not positive definite.
+  virtual bool factorize(const SparseMatrix& A) = 0;
+  /// Solves A x = b with the last factorized A; false on failure.
+  virtual bool solve(const VecX& b, VecX& x) = 0;
+  const LinearSolverStats& stats() const { return stats_; }
+  virtual std::string name() const = 0;
+
+ protected:
+  LinearSolverStats stats_;
+};
+
+/// `tolerance` and `max_iterations` apply to the iterative solvers only.
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tolerance = 1e-10,
+                                                 int max_iterations = 2000);
+
+}  // namespace valve

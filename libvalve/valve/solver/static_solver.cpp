@@ -1,0 +1,128 @@
+#include "valve/solver/static_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+
+#include "valve/solver/constrained_system.hpp"
+
+namespace valve {
+namespace {
+
+double free_norm(const VecX& f, const std::vector<char>& constrained) {
+  double s = 0;
+  for (int i = 0; i < f.size(); ++i)
+    if (!constrained[i]) s += f[i] * f[i];
+  return std::sqrt(s);
+}
+
+}  // namespace
+
+SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& opt, double load_target,
+                           double load_start) {
+  const auto t_start = std::chrono::steady_clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
+  auto solver = make_linear_solver(opt.linear_solver, opt.iterative_tolerance, opt.iterative_max_iterations);
+  SolverSummary sum;
+  sum.linear_solver = solver->name();
+  const VecX v = VecX::Zero(x.size());
+  const auto& cons = sys.constrained();
+  VecX f;
+  double mu = 0;
+
+  // Newton at a fixed load factor; returns true when the residual tolerance is met.
+  auto newton = [&](double load) -> bool {
+    const State s0{x, v, load, 0.0};
+    const double f_ext = std::max(free_norm(sys.external_force(s0), cons), 1e-300);
+    for (int it = 0; it < opt.max_newton_iterations; ++it) {
+      const State s{x, v, load, 0.0};
+      if (!sys.evaluate(s, f, true, false)) return false;
+      ++sum.jacobian_evaluations;
+      const double r0 = free_norm(f, cons);
+      sum.relative_residual = r0 / f_ext;
+      if (sum.relative_residual <= opt.relative_residual_tolerance) return true;
+      SparseMatrix K = -sys.dfdx().matrix();
+      bool reduced = false;
+      for (int attempt = 0; attempt < 12 && !reduced; ++attempt) {
+        SparseMatrix A = K;
+        if (mu > 0)
+          for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += mu * std::max(std::abs(K.coeff(i, i)), 1e-12);
+        VecX b = f;
+        apply_constraints(A, b, cons);
+        if (solver->needs_symmetric()) A = symmetric_part(A);
+        VecX dx;
+        if (!solver->factorize(A) || !solver->solve(b, dx)) {
+          mu = std::max(1e-6, 10 * mu);
+          continue;
+        }
+        ++sum.newton_iterations;
+        // Backtracking on |f|² (the pressure load has no potential, so no energy merit).
+        for (double alpha = 1.0; alpha >= 1.0 / 64; alpha *= 0.5) {
+          const VecX trial = x + alpha * dx;
+          VecX ft;
+          if (!sys.evaluate(State{trial, v, load, 0.0}, ft, false, false)) continue;
+          if (free_norm(ft, cons) < (1 - 1e-4 * alpha) * r0) {
+            x = trial;
+            reduced = true;
+            break;
+          }
+        }
+        if (reduced)
+          mu = mu > 1e-8 ? mu / 10 : 0;
+        else
+          mu = std::max(1e-6, 10 * mu);
+      }
+      if (!reduced) return false;
+      if (wall() > opt.max_wall_seconds) return false;
+    }
+    return false;
+  };
+
+  double load = load_start, dload = opt.initial_increment * (load_target - load_start);
+  if (load_target == load_start) dload = 0;
+  long increments = 0;
+  while (true) {
+    if (wall() > opt.max_wall_seconds) {
+      sum.status = SolverStatus::not_converged;
+      sum.reason = "max_wall_seconds reached";
+      break;
+    }
+    if (increments >= opt.max_increments) {
+      sum.status = SolverStatus::not_converged;
+      sum.reason = "max_increments reached";
+      break;
+    }
+    const double next = (dload == 0) ? load_target
+                                     : (std::abs(load_target - load) <= std::abs(dload) ? load_target : load + dload);
+    const VecX saved = x;
+    const long it_before = sum.newton_iterations;
+    if (newton(next)) {
+      ++increments;
+      load = next;
+      if (load == load_target) {
+        sum.status = SolverStatus::ok;
+        sum.reason = "residual below tolerance at the target load";
+        break;
+      }
+      if (sum.newton_iterations - it_before <= 6) dload *= 2;
+    } else {
+      x = saved;
+      ++sum.rejected_steps;
+      dload *= 0.5;
+      if (std::abs(dload) < opt.min_increment * std::abs(load_target - load_start) || dload == 0) {
+        sum.status = SolverStatus::not_converged;
+        sum.reason = "load increment fell below min_increment at load factor " + std::to_string(load);
+        break;
+      }
+    }
+  }
+  sum.steps = increments;
+  sum.linear = solver->stats();
+  const State s{x, v, load, 0.0};
+  sys.evaluate(s, f, false, false);
+  sum.max_free_force_N = sys.max_free_force(f);
+  sum.wall_seconds = wall();
+  sum.term_timings = sys.timings();
+  return sum;
+}
+
+}  // namespace valve

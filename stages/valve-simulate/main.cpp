@@ -1,0 +1,144 @@
+// valve-simulate --scene SCENE.json --out DIR [--mesh FILE] [--model mass_spring|membrane_fe]
+//                [--pressure "80 mmHg"] [--solver bdf2|static] [--time-series] [--quiet]
+// Simulates the scene (flags override its keys) and writes DIR/closed.sim.vtp (Displacement,
+// GreenStrain, StretchFiber, StretchCross, AreaRatio, and PK2Stress for the FE model),
+// optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json.
+// Exit 0 ok, 2 bad input, 3 not converged or failed (the summary says why; a non-converged
+// run still writes its last state, a failed one writes no mesh).
+#include <cstdio>
+#include <filesystem>
+
+#include "valve/analysis/leaflet_metrics.hpp"
+#include "valve/config/scene_config.hpp"
+#include "valve/core/cli.hpp"
+#include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
+#include "valve/io/mesh_io.hpp"
+#include "valve/mechanics/kinematics.hpp"
+#include "valve/mechanics/membrane_fe.hpp"
+#include "valve/mesh/validate.hpp"
+#include "valve/scene/simulation.hpp"
+
+using namespace valve;
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) {
+  return run_stage("valve-simulate", [&] {
+    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver"}, {"time-series", "quiet"});
+    const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");
+    const fs::path out = cl.require("out");
+    json j = load_json_file(scene_file);
+    if (!j.is_object()) throw InputError(scene_file.string() + ": expected a JSON object at the top level");
+    if (auto v = cl.get("mesh")) j["mesh"] = fs::absolute(*v).string();
+    if (auto v = cl.get("model")) j["model"] = *v;
+    if (auto v = cl.get("pressure")) {
+      if (!j.contains("pressure") || !j["pressure"].is_object()) j["pressure"] = json::object();
+      j["pressure"]["value"] = *v;
+    }
+    if (auto v = cl.get("solver")) {
+      if (!j.contains("solver") || !j["solver"].is_object()) j["solver"] = json::object();
+      j["solver"]["type"] = *v;
+    }
+    if (cl.has("time-series")) j["output"]["time_series"] = true;
+    const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
+    const bool quiet = cl.has("quiet");
+
+    TriMesh mesh = read_mesh(scene.mesh_path);
+    validate_mesh(mesh, scene.mesh_path.string());
+    auto system = build_system(scene, mesh);
+
+    StageSummary summary("simulate", out);
+    summary.add_input("scene", scene_file);
+    summary.add_input("mesh", scene.mesh_path);
+    summary.parameters() = scene.used;
+
+    Progress progress("valve-simulate", quiet);
+    std::vector<std::string> series_files;
+    std::vector<double> series_times;
+    long accepted = 0;
+    SimulationHooks hooks;
+    hooks.on_step = [&](const VecX& x, double t) {
+      ++accepted;
+      progress.update(-1, "t = " + std::to_string(t) + " ms, " + std::to_string(accepted) + " steps");
+      if (scene.time_series && accepted % scene.time_series_every == 0) {
+        const std::string name = "series/step_" + std::to_string(accepted) + ".vtp";
+        const MatX3 pos = unflatten(x);
+        write_mesh(out / name, mesh, &pos);
+        series_files.push_back(name);
+        series_times.push_back(t);
+      }
+    };
+    const SimulationResult res = simulate(scene, mesh, *system, hooks);
+    progress.finish(res.summary.one_line());
+
+    summary.metrics()["solver"] = res.summary.to_json();
+    summary.metrics()["model"] = to_string(scene.model);
+    summary.metrics()["nodes"] = mesh.num_nodes();
+    summary.metrics()["triangles"] = mesh.num_triangles();
+    nlohmann::json incs = nlohmann::json::array();
+    for (const auto& inc : res.increments)
+      incs.push_back({{"load", inc.load}, {"status", to_string(inc.summary.status)}, {"steps", inc.summary.steps}});
+    summary.metrics()["increments"] = incs;
+    if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
+      summary.set_status("failed", res.summary.reason);
+      summary.write();
+      std::fprintf(stderr, "valve-simulate: failed: %s\n", res.summary.reason.c_str());
+      return 3;
+    }
+
+    const MatX3 pos = unflatten(res.x);
+    const MatX3 disp = pos - mesh.points;
+    const auto kin = triangle_kinematics(mesh, res.x);
+    Eigen::MatrixXd green(mesh.num_triangles(), 3), sf(mesh.num_triangles(), 1), sc(mesh.num_triangles(), 1),
+        ar(mesh.num_triangles(), 1);
+    for (int t = 0; t < mesh.num_triangles(); ++t) {
+      // Written as tensor components (E11, E22, E12), as ParaView users expect.
+      green.row(t) << kin[t].green[0], kin[t].green[1], 0.5 * kin[t].green[2];
+      sf(t, 0) = kin[t].stretch_fiber;
+      sc(t, 0) = kin[t].stretch_cross;
+      ar(t, 0) = kin[t].area_ratio;
+    }
+    std::vector<NamedArray> arrays{{"Displacement", disp, false},
+                                   {"GreenStrain", green, true},
+                                   {"StretchFiber", sf, true},
+                                   {"StretchCross", sc, true},
+                                   {"AreaRatio", ar, true}};
+    if (scene.model == ModelKind::membrane_fe) {
+      MembraneFETerm fe(mesh, scene.material.law(), scene.thickness);
+      Eigen::MatrixXd S(mesh.num_triangles(), 3);
+      for (int t = 0; t < mesh.num_triangles(); ++t) S.row(t) = fe.stress(res.x, t).transpose();
+      arrays.push_back({"PK2Stress", S, true});
+    }
+    write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
+    if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);
+
+    double max_disp = 0;
+    for (int i = 0; i < disp.rows(); ++i) max_disp = std::max(max_disp, disp.row(i).norm());
+    summary.metrics()["max_displacement_mm"] = max_disp;
+    nlohmann::json leaflets = nlohmann::json::array();
+    int num_leaflets = 1;
+    for (int l : mesh.leaflet) num_leaflets = std::max(num_leaflets, l + 1);
+    const VecX X = flatten(mesh.points);
+    for (int l = 0; l < num_leaflets; ++l) {
+      const auto edge = free_edge_polyline(mesh, l);
+      if (edge.empty()) continue;
+      const Midline mid = leaflet_midline(mesh, l);
+      leaflets.push_back({{"leaflet", l},
+                          {"free_edge_rest_mm", polyline_length(edge, X)},
+                          {"free_edge_mm", polyline_length(edge, res.x)},
+                          {"midline_rest_mm", mid.length(mesh, X)},
+                          {"midline_mm", mid.length(mesh, res.x)}});
+    }
+    if (!leaflets.empty()) summary.metrics()["leaflets"] = leaflets;
+    const bool ok = res.summary.status == SolverStatus::ok;
+    summary.set_status(ok ? "ok" : "not_converged", res.summary.reason);
+    summary.write();
+    if (!quiet) {
+      std::printf("valve-simulate: %s\n", res.summary.one_line().c_str());
+      for (const auto& l : leaflets)
+        std::printf("  leaflet %d: free edge %.3f mm, midline %.3f mm\n", l["leaflet"].get<int>(),
+                    l["free_edge_mm"].get<double>(), l["midline_mm"].get<double>());
+    }
+    return ok ? 0 : 3;
+  });
+}

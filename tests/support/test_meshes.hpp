@@ -1,0 +1,69 @@
+#pragma once
+// Small meshes and helpers shared by the tests.
+#include <Eigen/Dense>
+#include <random>
+
+#include "valve/mechanics/force_term.hpp"
+#include "valve/mesh/tri_mesh.hpp"
+
+namespace valve::test {
+
+/// A 3x3-node square grid in the z = 0 plane (8 triangles), fibers at `fiber_deg` from +x.
+inline TriMesh grid_mesh(double size = 2.0, double fiber_deg = 30.0) {
+  TriMesh m;
+  m.points.resize(9, 3);
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.points.row(3 * j + i) << size * i / 2.0, size * j / 2.0, 0.0;
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = 3 * j + i, b = a + 1, c = a + 3, d = a + 4;
+      m.triangles.emplace_back(a, b, d);
+      m.triangles.emplace_back(a, d, c);
+    }
+  const double f = fiber_deg * 3.14159265358979 / 180;
+  m.fiber.resize(m.num_triangles(), 3);
+  for (int t = 0; t < m.num_triangles(); ++t) m.fiber.row(t) << std::cos(f), std::sin(f), 0;
+  m.fill_defaults();
+  return m;
+}
+
+/// Rest positions displaced by a random perturbation of size `amp` plus a stretch, so that
+/// springs and elements are in a generic (tension, shear, out-of-plane) state.
+inline VecX perturbed(const TriMesh& m, double amp, unsigned seed = 7, double stretch = 1.15) {
+  std::mt19937 g(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  VecX x = flatten(m.points);
+  for (int i = 0; i < x.size(); ++i) x[i] = x[i] * (i % 3 == 1 ? 1.05 : stretch) + amp * u(g);
+  return x;
+}
+
+/// Central-difference df/dx (dense) of a force term at x.
+inline Eigen::MatrixXd numeric_dfdx(const ForceTerm& term, const VecX& x, const VecX& v, double load, double h) {
+  const int n = static_cast<int>(x.size());
+  Eigen::MatrixXd J(n, n);
+  for (int j = 0; j < n; ++j) {
+    VecX xp = x, xm = x, fp = VecX::Zero(n), fm = VecX::Zero(n);
+    xp[j] += h;
+    xm[j] -= h;
+    term.add(State{xp, v, load, 0}, fp, nullptr, nullptr);
+    term.add(State{xm, v, load, 0}, fm, nullptr, nullptr);
+    J.col(j) = (fp - fm) / (2 * h);
+  }
+  return J;
+}
+
+inline Eigen::MatrixXd analytic_dfdx(const ForceTerm& term, int num_nodes, const VecX& x, const VecX& v, double load) {
+  std::vector<std::pair<int, int>> pairs;
+  term.couplings(pairs);
+  BlockJacobian J(num_nodes, pairs);
+  VecX f = VecX::Zero(x.size());
+  term.add(State{x, v, load, 0}, f, &J, nullptr);
+  return Eigen::MatrixXd(J.matrix());
+}
+
+/// Max |A - B| / max|B|.
+inline double relative_difference(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
+  return (A - B).cwiseAbs().maxCoeff() / std::max(B.cwiseAbs().maxCoeff(), 1e-300);
+}
+
+}  // namespace valve::test
