@@ -1,5 +1,6 @@
 // valve-simulate --scene SCENE.json --out DIR [--mesh FILE] [--model mass_spring|membrane_fe]
-//                [--pressure "80 mmHg"] [--solver bdf2|static] [--time-series] [--quiet]
+//                [--pressure "80 mmHg"] [--solver bdf2|static] [--set key.path=value ...]
+//                [--time-series] [--quiet]
 // Simulates the scene (flags override its keys) and writes DIR/closed.sim.vtp (Displacement,
 // GreenStrain, StretchFiber, StretchCross, AreaRatio, and PK2Stress for the FE model),
 // optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json.
@@ -17,6 +18,7 @@
 #include "valve/mechanics/kinematics.hpp"
 #include "valve/mechanics/membrane_fe.hpp"
 #include "valve/mesh/validate.hpp"
+#include "valve/scene/biaxial_protocol.hpp"
 #include "valve/scene/simulation.hpp"
 
 using namespace valve;
@@ -24,7 +26,7 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   return run_stage("valve-simulate", [&] {
-    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver"}, {"time-series", "quiet"});
+    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set"}, {"time-series", "quiet"});
     const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");
     const fs::path out = cl.require("out");
     json j = load_json_file(scene_file);
@@ -40,6 +42,7 @@ int main(int argc, char** argv) {
       j["solver"]["type"] = *v;
     }
     if (cl.has("time-series")) j["output"]["time_series"] = true;
+    for (const auto& assignment : cl.get_all("set")) apply_override(j, assignment, scene_file.string());
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
     const bool quiet = cl.has("quiet");
 
@@ -68,6 +71,11 @@ int main(int argc, char** argv) {
         series_times.push_back(t);
       }
     };
+    std::unique_ptr<BiaxialProtocol> biaxial;
+    if (scene.strain_markers) {
+      biaxial = std::make_unique<BiaxialProtocol>(scene, mesh);
+      biaxial->install(hooks);
+    }
     const SimulationResult res = simulate(scene, mesh, *system, hooks);
     progress.finish(res.summary.one_line());
 
@@ -79,6 +87,7 @@ int main(int argc, char** argv) {
     for (const auto& inc : res.increments)
       incs.push_back({{"load", inc.load}, {"status", to_string(inc.summary.status)}, {"steps", inc.summary.steps}});
     summary.metrics()["increments"] = incs;
+    if (biaxial) summary.metrics()["biaxial"] = biaxial->report();
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
       summary.set_status("failed", res.summary.reason);
       summary.write();

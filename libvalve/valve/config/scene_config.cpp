@@ -30,8 +30,10 @@ void parse_bdf2(JsonReader& r, Bdf2Options& o) {
 
 void parse_static(JsonReader& r, StaticOptions& o) {
   o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-9, 1e-16, 1.0);
-  o.max_newton_iterations = r.integer("max_newton_iterations", 40, 1, 100000);
-  o.initial_increment = r.number("initial_increment", 0.25, 1e-9, 1.0);
+  o.max_newton_iterations = r.integer("max_newton_iterations", 500, 1, 10000000);
+  o.initial_increment = r.number("initial_increment", 1.0, 1e-9, 1.0);
+  o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", 1e-4, 1e-20, 1e20);
+  o.trust_radius = r.quantity("trust_radius", Dimension::length, std::string("1 mm"), 1e-9, 1e9);
   o.min_increment = r.number("min_increment", 1e-5, 1e-15, 1.0);
   o.max_increments = r.integer("max_increments", 2000, 1, 100000000);
   o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
@@ -99,7 +101,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     sc.fixed.use_node_roles = f.boolean("node_roles", true);
     sc.fixed.nodes = f.integer_list("nodes", std::vector<int>{});
     sc.fixed.planar = f.boolean("planar", false);
-    sc.fixed.pin_rigid_in_plane = f.boolean("pin_rigid_in_plane", false);
+    sc.fixed.pin_centre = f.boolean("pin_centre", false);
     r.record("fixed", f.finish());
   }
   {
@@ -114,17 +116,14 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   {
     JsonReader s = r.object("solver");
     sc.solver = s.choice("type", {"bdf2", "static"}, std::string("bdf2")) == "bdf2" ? SolverKind::bdf2 : SolverKind::static_newton;
-    if (sc.solver == SolverKind::bdf2) {
-      JsonReader b = s.object("bdf2");
-      parse_bdf2(b, sc.bdf2);
-      s.record("bdf2", b.used());
-      b.finish();
-    } else {
-      JsonReader b = s.object("static");
-      parse_static(b, sc.statics);
-      s.record("static", b.used());
-      b.finish();
-    }
+    // Both option blocks are read (and validated) whichever solver runs, so that a scene
+    // can carry both and be switched with --solver.
+    JsonReader b = s.object("bdf2");
+    parse_bdf2(b, sc.bdf2);
+    s.record("bdf2", b.finish());
+    JsonReader st = s.object("static");
+    parse_static(st, sc.statics);
+    s.record("static", st.finish());
     r.record("solver", s.finish());
   }
   if (r.has("monitor")) {
@@ -144,6 +143,15 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     }
   } else {
     r.record("monitor", "all");
+  }
+  if (r.has("strain_markers")) {
+    JsonReader m = r.object("strain_markers");
+    StrainMarkerConfig mc;
+    mc.side = m.quantity("side", Dimension::length, std::string("1.5 mm"), 1e-6, 1e3);
+    mc.seed_rule = m.choice("convergence", {"seed", "solver"}, std::string("seed")) == "seed";
+    mc.rule_fraction = m.number("fraction", 0.02, 1e-12, 1.0);
+    r.record("strain_markers", m.finish());
+    sc.strain_markers = mc;
   }
   {
     JsonReader o = r.object("output");

@@ -34,7 +34,17 @@ struct FixedConfig {
   bool use_node_roles = true;   // nodes whose NodeRole is fixed
   std::vector<int> nodes;       // extra fixed nodes
   bool planar = false;          // fix z of every node (in-plane tests)
-  bool pin_rigid_in_plane = false;  // fix x,y of the node nearest the centroid and y of one on its +x side
+  bool pin_centre = false;      // fix x,y of the node nearest the centroid (in-plane translation).
+                                // Rotation stays free: under dead edge loads, moment balance
+                                // (P Fᵀ symmetric) fixes it, and pinning it would add a reaction
+                                // couple that spoils the homogeneous biaxial state.
+};
+/// Virtual strain markers and the seed's per-increment convergence rule (3.2.2.5).
+struct StrainMarkerConfig {
+  double side = 1.5;         // mm
+  bool seed_rule = true;     // converge an increment when both normal marker strains change
+                             // by less than `rule_fraction` of their value per step
+  double rule_fraction = 0.02;
 };
 struct MonitorConfig {
   enum class Kind { all, node, nearest_point, free_edge_middle } kind = Kind::all;
@@ -57,6 +67,7 @@ struct SceneConfig {
   Bdf2Options bdf2;
   StaticOptions statics;
   MonitorConfig monitor;
+  std::optional<StrainMarkerConfig> strain_markers;
   bool time_series = false;
   int time_series_every = 1;
   json used;

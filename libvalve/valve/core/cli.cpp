@@ -38,13 +38,13 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
     }
     const std::string name = a.substr(2);
     if (is_in(switches, name)) {
-      values_[name] = "true";
+      values_[name].push_back("true");
     } else if (is_in(flags, name)) {
       if (eq == std::string::npos) {
         if (i + 1 >= argc) throw InputError(program_ + ": --" + name + ": expected a value, found the end of the command line");
         value = argv[++i];
       }
-      values_[name] = value;
+      values_[name].push_back(value);
     } else {
       std::string known;
       for (const auto& f : flags) known += " --" + f;
@@ -57,7 +57,32 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
 std::optional<std::string> CommandLine::get(const std::string& flag) const {
   auto it = values_.find(flag);
   if (it == values_.end()) return std::nullopt;
-  return it->second;
+  return it->second.back();
+}
+
+std::vector<std::string> CommandLine::get_all(const std::string& flag) const {
+  auto it = values_.find(flag);
+  return it == values_.end() ? std::vector<std::string>{} : it->second;
+}
+
+void apply_override(nlohmann::json& config, const std::string& assignment, const std::string& where) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(where + ": --set: expected key.path=value, found \"" + assignment + "\"");
+  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  nlohmann::json* node = &config;
+  size_t start = 0;
+  while (true) {
+    const auto dot = path.find('.', start);
+    const std::string key = path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (key.empty()) throw InputError(where + ": --set: expected key.path=value, found an empty key in \"" + path + "\"");
+    if (!node->is_object()) *node = nlohmann::json::object();
+    node = &(*node)[key];
+    if (dot == std::string::npos) break;
+    start = dot + 1;
+  }
+  const auto parsed = nlohmann::json::parse(text, nullptr, false);
+  *node = parsed.is_discarded() ? nlohmann::json(text) : parsed;
 }
 
 std::string CommandLine::require(const std::string& flag) const {

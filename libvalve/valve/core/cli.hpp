@@ -14,8 +14,10 @@ namespace valve {
 class CommandLine {
  public:
   /// `flags` lists the accepted --options taking a value; `switches` those without one.
+  /// A flag may repeat (get() returns the last value, get_all() every value in order).
   CommandLine(int argc, char** argv, const std::vector<std::string>& flags, const std::vector<std::string>& switches);
   std::optional<std::string> get(const std::string& flag) const;
+  std::vector<std::string> get_all(const std::string& flag) const;
   std::string require(const std::string& flag) const;
   bool has(const std::string& flag) const;
   const std::vector<std::string>& positional() const { return positional_; }
@@ -23,9 +25,14 @@ class CommandLine {
 
  private:
   std::string program_;
-  std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> values_;
   std::vector<std::string> positional_;
 };
+
+/// Applies "--set key.path=value" overrides to a JSON config: creates objects along the
+/// path; the value is parsed as JSON when it is valid JSON (numbers, true, objects), else
+/// kept as a string ("20 kPa"). Throws InputError for a malformed assignment.
+void apply_override(nlohmann::json& config, const std::string& assignment, const std::string& where);
 
 /// Collects a stage's summary and writes DIR/<stage>.summary.json atomically.
 class StageSummary {

@@ -26,24 +26,15 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
   }
   if (sc.fixed.planar)
     for (int i = 0; i < m.num_nodes(); ++i) sys->constrained()[3 * i + 2] = 1;
-  if (sc.fixed.pin_rigid_in_plane) {
+  if (sc.fixed.pin_centre) {
     const Vec3 c = m.points.colwise().mean();
-    const double size = (m.points.colwise().maxCoeff() - m.points.colwise().minCoeff()).norm();
-    int centre = 0, side = -1;
-    double best = 1e300, best_side = 1e300;
+    int centre = 0;
+    double best = 1e300;
     for (int i = 0; i < m.num_nodes(); ++i) {
       const double d = (m.points.row(i).transpose() - c).norm();
       if (d < best) best = d, centre = i;
     }
-    for (int i = 0; i < m.num_nodes(); ++i) {
-      const Vec3 d = m.points.row(i).transpose() - m.points.row(centre).transpose();
-      if (d.x() < 0.1 * size) continue;
-      const double off = std::abs(d.y()) + std::abs(d.z()) - 1e-3 * d.x();
-      if (off < best_side) best_side = off, side = i;
-    }
-    if (side < 0) throw_input_error(where, "fixed.pin_rigid_in_plane", "a mesh extending along +x", "none");
     sys->constrained()[3 * centre] = sys->constrained()[3 * centre + 1] = 1;
-    sys->constrained()[3 * side + 1] = 1;
   }
   // Model only what the scene requires: each block below exists only if declared.
   if (sc.model == ModelKind::mass_spring)
@@ -61,7 +52,7 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
   for (char c : sys->constrained()) free_dofs += !c;
   if (free_dofs == 0) throw_input_error(where, "fixed", "at least one free node", "every node constrained");
   if (free_dofs == sys->num_dofs() && !sc.fixed.planar)
-    throw_input_error(where, "fixed", "at least one constrained node (NodeRole fixed, fixed.nodes or fixed.pin_rigid_in_plane)",
+    throw_input_error(where, "fixed", "at least one constrained node (NodeRole fixed, fixed.nodes or fixed.pin_centre)",
                       "none: the model could move as a rigid body");
   return sys;
 }

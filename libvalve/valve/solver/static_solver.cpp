@@ -1,6 +1,7 @@
 #include "valve/solver/static_solver.hpp"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
 
 #include "valve/solver/constrained_system.hpp"
@@ -27,52 +28,54 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
   const VecX v = VecX::Zero(x.size());
   const auto& cons = sys.constrained();
   VecX f;
-  double mu = 0;
 
-  // Newton at a fixed load factor; returns true when the residual tolerance is met.
+  const VecX& M = sys.dof_masses();
+  // Ψtc iterations at a fixed load factor; returns true when the residual tolerance is met.
   auto newton = [&](double load) -> bool {
     const State s0{x, v, load, 0.0};
     const double f_ext = std::max(free_norm(sys.external_force(s0), cons), 1e-300);
+    double delta = opt.initial_pseudo_step;
     for (int it = 0; it < opt.max_newton_iterations; ++it) {
+      if (wall() > opt.max_wall_seconds) return false;
       const State s{x, v, load, 0.0};
       if (!sys.evaluate(s, f, true, false)) return false;
       ++sum.jacobian_evaluations;
       const double r0 = free_norm(f, cons);
       sum.relative_residual = r0 / f_ext;
       if (sum.relative_residual <= opt.relative_residual_tolerance) return true;
-      SparseMatrix K = -sys.dfdx().matrix();
-      bool reduced = false;
-      for (int attempt = 0; attempt < 12 && !reduced; ++attempt) {
-        SparseMatrix A = K;
-        if (mu > 0)
-          for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += mu * std::max(std::abs(K.coeff(i, i)), 1e-12);
+      bool accepted = false;
+      for (int attempt = 0; attempt < 30 && !accepted; ++attempt) {
+        SparseMatrix A = -sys.dfdx().matrix();
+        if (delta < 1e30)
+          for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += M[i] / delta;
         VecX b = f;
         apply_constraints(A, b, cons);
         if (solver->needs_symmetric()) A = symmetric_part(A);
         VecX dx;
         if (!solver->factorize(A) || !solver->solve(b, dx)) {
-          mu = std::max(1e-6, 10 * mu);
+          delta *= 0.25;
           continue;
         }
         ++sum.newton_iterations;
-        // Backtracking on |f|² (the pressure load has no potential, so no energy merit).
-        for (double alpha = 1.0; alpha >= 1.0 / 64; alpha *= 0.5) {
-          const VecX trial = x + alpha * dx;
-          VecX ft;
-          if (!sys.evaluate(State{trial, v, load, 0.0}, ft, false, false)) continue;
-          if (free_norm(ft, cons) < (1 - 1e-4 * alpha) * r0) {
-            x = trial;
-            reduced = true;
-            break;
-          }
+        double longest = 0;
+        for (int i = 0; i < sys.num_nodes(); ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
+        if (longest > opt.trust_radius) dx *= opt.trust_radius / longest;  // δ too large for this state
+        const VecX trial = x + dx;
+        VecX ft;
+        if (!sys.evaluate(State{trial, v, load, 0.0}, ft, false, false)) {
+          delta *= 0.25;
+          continue;
         }
-        if (reduced)
-          mu = mu > 1e-8 ? mu / 10 : 0;
-        else
-          mu = std::max(1e-6, 10 * mu);
+        const double r1 = free_norm(ft, cons);
+        x = trial;
+        accepted = true;
+        // Switched evolution relaxation, with a bias towards growth: while a membrane swings
+        // through (the pressure is constant and stress has not built up) the residual stays
+        // flat, and plain SER would keep δ, and the step, tiny forever. Growth is bounded so
+        // one lucky step cannot jump to an undamped Newton step far from equilibrium.
+        delta *= std::clamp(1.5 * r0 / std::max(r1, 1e-300), 0.25, 4.0);
       }
-      if (!reduced) return false;
-      if (wall() > opt.max_wall_seconds) return false;
+      if (!accepted) return false;
     }
     return false;
   };

@@ -1,9 +1,16 @@
 #pragma once
-// Static equilibrium f(x; λ) = 0 for scenes where only the loaded state matters: Newton's
-// method with a backtracking line search on |f|², Levenberg-Marquardt regularization
-// (K + μ diag|K|) when the tangent is singular or the step does not reduce the residual
-// (a flat membrane has no out-of-plane stiffness at rest), and load continuation that
-// grows the load factor λ from 0 to the target, halving the increment on failure.
+// Static equilibrium f(x; λ) = 0 for scenes where only the loaded state matters.
+//
+// A membrane at rest has no out-of-plane stiffness, and a leaflet under pressure must
+// snap through (invert its curvature) on the way to equilibrium, so plain Newton stalls.
+// We use pseudo-transient continuation (Ψtc, Kelley & Keyes 1998): each iteration solves
+//     (K + M/δ) Δx = f,   K = -∂f/∂x,  M the lumped mass,
+// which is an implicit Euler step from rest of pseudo-time sqrt(δ); δ follows switched
+// evolution relaxation, δ ← δ · 1.5 |f_old|/|f_new| (bounded to [1/4, 4] per step), so far from equilibrium
+// the iteration behaves like damped dynamics and near it like Newton (δ → ∞, quadratic
+// convergence). Steps longer than the trust radius are scaled down; a failed solve or a
+// non-finite trial shrinks δ. Load continuation (λ increments, halved on failure) is kept
+// for strongly nonlinear loading paths.
 #include "valve/mechanics/mechanical_system.hpp"
 #include "valve/solver/linear_solver.hpp"
 #include "valve/solver/solver_summary.hpp"
@@ -12,8 +19,10 @@ namespace valve {
 
 struct StaticOptions {
   double relative_residual_tolerance = 1e-9;  // |f_free| / |f_external_free|
-  int max_newton_iterations = 40;             // per load increment
-  double initial_increment = 0.25;            // first Δλ
+  int max_newton_iterations = 500;            // per load increment
+  double initial_increment = 1.0;             // first Δλ
+  double initial_pseudo_step = 1e-4;          // δ0 in ms² (pseudo time step squared)
+  double trust_radius = 1.0;                  // mm: largest nodal move per iteration
   double min_increment = 1e-5;
   long max_increments = 2000;
   double max_wall_seconds = 600;
