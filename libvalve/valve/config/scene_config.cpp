@@ -23,7 +23,7 @@ void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
   o.adaptive = r.boolean("adaptive", true);
   o.linear_solver = parse_linear_solver(
-      r.choice("linear_solver", {"cholmod_llt", "cholmod_ldlt", "cg", "bicgstab", "lu"}, std::string("cholmod_ldlt")));
+      r.choice("linear_solver", {"cholmod_llt", "cholmod_ldlt", "umfpack", "klu", "cg", "bicgstab", "lu"}, std::string("cholmod_ldlt")));
   o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
   o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
 }
@@ -32,13 +32,14 @@ void parse_static(JsonReader& r, StaticOptions& o) {
   o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-9, 1e-16, 1.0);
   o.max_newton_iterations = r.integer("max_newton_iterations", 500, 1, 10000000);
   o.initial_increment = r.number("initial_increment", 1.0, 1e-9, 1.0);
-  o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", 1e-4, 1e-20, 1e20);
-  o.trust_radius = r.quantity("trust_radius", Dimension::length, std::string("1 mm"), 1e-9, 1e9);
+  o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", 1e-2, 1e-20, 1e20);
+  if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
+  else r.record("trust_radius", "2.5% of the bounding-box diagonal");
   o.min_increment = r.number("min_increment", 1e-5, 1e-15, 1.0);
   o.max_increments = r.integer("max_increments", 2000, 1, 100000000);
   o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
   o.linear_solver = parse_linear_solver(
-      r.choice("linear_solver", {"cholmod_llt", "cholmod_ldlt", "cg", "bicgstab", "lu"}, std::string("lu")));
+      r.choice("linear_solver", {"cholmod_llt", "cholmod_ldlt", "umfpack", "klu", "cg", "bicgstab", "lu"}, std::string("klu")));
   o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
   o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
 }
@@ -115,7 +116,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   }
   {
     JsonReader s = r.object("solver");
-    sc.solver = s.choice("type", {"bdf2", "static"}, std::string("bdf2")) == "bdf2" ? SolverKind::bdf2 : SolverKind::static_newton;
+    const std::string type = s.choice("type", {"auto", "bdf2", "static"}, std::string("auto"));
+    sc.solver = type == "auto" ? SolverKind::automatic : (type == "bdf2" ? SolverKind::bdf2 : SolverKind::static_newton);
     // Both option blocks are read (and validated) whichever solver runs, so that a scene
     // can carry both and be switched with --solver.
     JsonReader b = s.object("bdf2");

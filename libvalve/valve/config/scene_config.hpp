@@ -17,7 +17,9 @@
 namespace valve {
 
 enum class ModelKind { mass_spring, membrane_fe };
-enum class SolverKind { bdf2, static_newton };
+/// automatic: static equilibrium first (fast), dynamic BDF2 from the rest state if the static
+/// solve does not converge. bdf2 alone also gives the time history.
+enum class SolverKind { automatic, bdf2, static_newton };
 
 struct PressureConfig {
   double value = 0;  // MPa
@@ -63,7 +65,7 @@ struct SceneConfig {
   std::optional<DampingConfig> damping;
   FixedConfig fixed;
   std::vector<double> load_increments{1.0};
-  SolverKind solver = SolverKind::bdf2;
+  SolverKind solver = SolverKind::automatic;
   Bdf2Options bdf2;
   StaticOptions statics;
   MonitorConfig monitor;

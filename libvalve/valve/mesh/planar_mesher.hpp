@@ -5,6 +5,7 @@
 // settle, re-triangulating between moves. The springs only push (as in DistMesh, Persson &
 // Strang 2004): a common rest length a little above the mean edge length keeps the spring
 // network under slight compression, which spreads points evenly up to the fixed boundary.
+// Points pushed towards the boundary are projected back inside a band of 0.3 spacings.
 #include <cstdint>
 #include <functional>
 #include <vector>

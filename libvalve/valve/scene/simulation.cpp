@@ -82,42 +82,70 @@ std::vector<int> resolve_monitor(const SceneConfig& sc, const TriMesh& m) {
   return {};
 }
 
-SimulationResult simulate(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
+namespace {
+
+SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks,
+                          const std::vector<int>& monitor) {
+  SimulationResult res;
+  Bdf2Options opt = sc.bdf2;
+  opt.monitor_nodes = monitor;
+  Bdf2Integrator integ(sys, opt);
+  integ.reset(flatten(mesh.points));
+  if (hooks.on_step) integ.on_accepted = hooks.on_step;
+  for (size_t k = 0; k < sc.load_increments.size(); ++k) {
+    const double load = sc.load_increments[k];
+    StepObserver obs = hooks.observer_for_increment ? hooks.observer_for_increment(static_cast<int>(k), load) : StepObserver{};
+    IncrementResult inc{load, integ.run(load, obs)};
+    if (k == 0)
+      res.summary = inc.summary;
+    else
+      res.summary.accumulate(inc.summary);
+    res.increments.push_back(inc);
+    if (hooks.on_increment) hooks.on_increment(static_cast<int>(k), integ.positions(), inc);
+    if (inc.summary.status != SolverStatus::ok) break;
+  }
+  res.x = integ.positions();
+  res.summary.solver = "bdf2";
+  return res;
+}
+
+SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
   SimulationResult res;
   res.x = flatten(mesh.points);
+  double previous = 0;
+  for (size_t k = 0; k < sc.load_increments.size(); ++k) {
+    const double load = sc.load_increments[k];
+    IncrementResult inc{load, solve_static(sys, res.x, sc.statics, load, previous)};
+    previous = load;
+    if (k == 0)
+      res.summary = inc.summary;
+    else
+      res.summary.accumulate(inc.summary);
+    res.increments.push_back(inc);
+    if (hooks.on_increment) hooks.on_increment(static_cast<int>(k), res.x, inc);
+    if (inc.summary.status != SolverStatus::ok) break;
+  }
+  res.summary.solver = "static";
+  return res;
+}
+
+}  // namespace
+
+SimulationResult simulate(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
   const auto monitor = resolve_monitor(sc, mesh);
-  if (sc.solver == SolverKind::bdf2) {
-    Bdf2Options opt = sc.bdf2;
-    opt.monitor_nodes = monitor;
-    Bdf2Integrator integ(sys, opt);
-    integ.reset(res.x);
-    if (hooks.on_step) integ.on_accepted = hooks.on_step;
-    for (size_t k = 0; k < sc.load_increments.size(); ++k) {
-      const double load = sc.load_increments[k];
-      StepObserver obs = hooks.observer_for_increment ? hooks.observer_for_increment(static_cast<int>(k), load) : StepObserver{};
-      IncrementResult inc{load, integ.run(load, obs)};
-      if (k == 0)
-        res.summary = inc.summary;
-      else
-        res.summary.accumulate(inc.summary);
-      res.increments.push_back(inc);
-      if (hooks.on_increment) hooks.on_increment(static_cast<int>(k), integ.positions(), inc);
-      if (inc.summary.status != SolverStatus::ok) break;
-    }
-    res.x = integ.positions();
+  SimulationResult res;
+  // A per-step convergence rule (the biaxial protocol) is a property of the dynamics.
+  const bool wants_dynamics = sc.solver == SolverKind::bdf2 || (sc.solver == SolverKind::automatic && hooks.observer_for_increment);
+  if (wants_dynamics) {
+    res = run_bdf2(sc, mesh, sys, hooks, monitor);
   } else {
-    double previous = 0;
-    for (size_t k = 0; k < sc.load_increments.size(); ++k) {
-      const double load = sc.load_increments[k];
-      IncrementResult inc{load, solve_static(sys, res.x, sc.statics, load, previous)};
-      previous = load;
-      if (k == 0)
-        res.summary = inc.summary;
-      else
-        res.summary.accumulate(inc.summary);
-      res.increments.push_back(inc);
-      if (hooks.on_increment) hooks.on_increment(static_cast<int>(k), res.x, inc);
-      if (inc.summary.status != SolverStatus::ok) break;
+    res = run_static(sc, mesh, sys, hooks);
+    if (sc.solver == SolverKind::automatic && (res.summary.status != SolverStatus::ok || !res.x.allFinite())) {
+      const std::string why = res.summary.reason;
+      const SolverSummary first = res.summary;
+      res = run_bdf2(sc, mesh, sys, hooks, monitor);
+      res.summary.fallback_from = "static (" + why + ")";
+      res.summary.wall_seconds += first.wall_seconds;
     }
   }
   if (!res.x.allFinite()) {

@@ -2,6 +2,8 @@
 
 #include <Eigen/CholmodSupport>
 #include <Eigen/IterativeLinearSolvers>
+#include <Eigen/KLUSupport>
+#include <Eigen/UmfPackSupport>
 #include <Eigen/SparseLU>
 #include <chrono>
 
@@ -97,16 +99,20 @@ class IterativeSolver final : public LinearSolver {
 LinearSolverType parse_linear_solver(const std::string& name) {
   if (name == "cholmod_llt") return LinearSolverType::cholmod_llt;
   if (name == "cholmod_ldlt") return LinearSolverType::cholmod_ldlt;
+  if (name == "umfpack") return LinearSolverType::umfpack;
+  if (name == "klu") return LinearSolverType::klu;
   if (name == "cg") return LinearSolverType::cg;
   if (name == "bicgstab") return LinearSolverType::bicgstab;
   if (name == "lu") return LinearSolverType::lu;
-  throw InputError("linear solver: expected cholmod_llt|cholmod_ldlt|cg|bicgstab|lu, found \"" + name + "\"");
+  throw InputError("linear solver: expected cholmod_llt|cholmod_ldlt|umfpack|klu|cg|bicgstab|lu, found \"" + name + "\"");
 }
 
 std::string to_string(LinearSolverType t) {
   switch (t) {
     case LinearSolverType::cholmod_llt: return "cholmod_llt";
     case LinearSolverType::cholmod_ldlt: return "cholmod_ldlt";
+    case LinearSolverType::umfpack: return "umfpack";
+    case LinearSolverType::klu: return "klu";
     case LinearSolverType::cg: return "cg";
     case LinearSolverType::bicgstab: return "bicgstab";
     case LinearSolverType::lu: return "lu";
@@ -122,6 +128,10 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
       return std::make_unique<DirectSolver<Eigen::CholmodSimplicialLDLT<SparseMatrix>>>("cholmod_ldlt", true);
     case LinearSolverType::lu:
       return std::make_unique<DirectSolver<Eigen::SparseLU<SparseMatrix>>>("lu", false);
+    case LinearSolverType::umfpack:
+      return std::make_unique<DirectSolver<Eigen::UmfPackLU<SparseMatrix>>>("umfpack", false);
+    case LinearSolverType::klu:
+      return std::make_unique<DirectSolver<Eigen::KLU<SparseMatrix>>>("klu", false);
     case LinearSolverType::cg:
       return std::make_unique<IterativeSolver<
           Eigen::ConjugateGradient<SparseMatrix, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>>>>(

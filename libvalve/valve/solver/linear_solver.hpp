@@ -1,6 +1,7 @@
 #pragma once
-// Linear solvers behind one interface: CHOLMOD supernodal Cholesky and simplicial LDLᵀ
-// (SuiteSparse), preconditioned conjugate gradients, BiCGStab and sparse LU (Eigen).
+// Linear solvers behind one interface: CHOLMOD supernodal Cholesky and simplicial LDLᵀ,
+// UMFPACK and KLU sparse LU (SuiteSparse), preconditioned conjugate gradients, BiCGStab and
+// sparse LU (Eigen).
 // The symbolic analysis is done once per pattern; factorize() is called per matrix.
 #include <memory>
 #include <string>
@@ -9,7 +10,7 @@
 
 namespace valve {
 
-enum class LinearSolverType { cholmod_llt, cholmod_ldlt, cg, bicgstab, lu };
+enum class LinearSolverType { cholmod_llt, cholmod_ldlt, umfpack, klu, cg, bicgstab, lu };
 
 LinearSolverType parse_linear_solver(const std::string& name);  // throws InputError
 std::string to_string(LinearSolverType t);

@@ -22,6 +22,8 @@ nlohmann::json SolverSummary::to_json() const {
           {"rejected_steps", rejected_steps},
           {"newton_iterations", newton_iterations},
           {"jacobian_evaluations", jacobian_evaluations},
+          {"solver", solver},
+          {"fallback_from", fallback_from},
           {"linear_solver", linear_solver},
           {"factorizations", linear.factorizations},
           {"linear_solves", linear.solves},
@@ -59,6 +61,7 @@ void SolverSummary::accumulate(const SolverSummary& o) {
   reason = o.reason;
   linear = o.linear;  // linear stats are cumulative per solver instance
   linear_solver = o.linear_solver;
+  solver = o.solver;
   final_step_ms = o.final_step_ms;
   last_monitor_displacement_mm = o.last_monitor_displacement_mm;
   max_free_force_N = o.max_free_force_N;

@@ -22,6 +22,8 @@ struct SolverSummary {
   long jacobian_evaluations = 0;
   LinearSolverStats linear;
   std::string linear_solver;
+  std::string solver;          // which solver produced the result (bdf2 | static)
+  std::string fallback_from;   // set when the automatic choice fell back to BDF2, with why
   double simulated_time_ms = 0;
   double final_step_ms = 0;
   double last_monitor_displacement_mm = 0;

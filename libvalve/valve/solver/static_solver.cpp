@@ -30,6 +30,13 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
   VecX f;
 
   const VecX& M = sys.dof_masses();
+  double trust = opt.trust_radius;
+  if (trust <= 0) {
+    // A fixed fraction of the model size: 1 mm steps made the FE leaflet wander for
+    // thousands of iterations, 0.5 mm (2.5 % of 20 mm) converged in ~80 on every mesh tried.
+    const MatX3 p = unflatten(x);
+    trust = 0.025 * (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
+  }
   // Ψtc iterations at a fixed load factor; returns true when the residual tolerance is met.
   auto newton = [&](double load) -> bool {
     const State s0{x, v, load, 0.0};
@@ -59,7 +66,7 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
         ++sum.newton_iterations;
         double longest = 0;
         for (int i = 0; i < sys.num_nodes(); ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
-        if (longest > opt.trust_radius) dx *= opt.trust_radius / longest;  // δ too large for this state
+        if (longest > trust) dx *= trust / longest;  // δ too large for this state
         const VecX trial = x + dx;
         VecX ft;
         if (!sys.evaluate(State{trial, v, load, 0.0}, ft, false, false)) {

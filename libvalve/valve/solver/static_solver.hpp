@@ -21,12 +21,13 @@ struct StaticOptions {
   double relative_residual_tolerance = 1e-9;  // |f_free| / |f_external_free|
   int max_newton_iterations = 500;            // per load increment
   double initial_increment = 1.0;             // first Δλ
-  double initial_pseudo_step = 1e-4;          // δ0 in ms² (pseudo time step squared)
-  double trust_radius = 1.0;                  // mm: largest nodal move per iteration
+  double initial_pseudo_step = 1e-2;          // δ0 in ms² (pseudo time step squared)
+  double trust_radius = 0;                    // mm: largest nodal move per iteration;
+                                              // 0 = 2.5 % of the bounding-box diagonal
   double min_increment = 1e-5;
   long max_increments = 2000;
   double max_wall_seconds = 600;
-  LinearSolverType linear_solver = LinearSolverType::lu;  // exact Newton: pressure is non-symmetric
+  LinearSolverType linear_solver = LinearSolverType::klu;  // exact Newton: pressure is non-symmetric
   double iterative_tolerance = 1e-10;
   int iterative_max_iterations = 5000;
 };
