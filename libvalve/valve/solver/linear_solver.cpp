@@ -16,11 +16,24 @@ double since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// CHOLMOD prints "not positive definite" warnings itself; a failed factorization is
+// already reported through info() and the stage's summary, so keep stderr to one line.
+template <class D>
+void silence(D&) {}
+template <class M, int UpLo>
+void silence(Eigen::CholmodSupernodalLLT<M, UpLo>& d) {
+  d.cholmod().print = 0;
+}
+template <class M, int UpLo>
+void silence(Eigen::CholmodSimplicialLDLT<M, UpLo>& d) {
+  d.cholmod().print = 0;
+}
+
 // Direct solvers share the analyse-once / factorize-per-matrix pattern.
 template <class Decomposition>
 class DirectSolver final : public LinearSolver {
  public:
-  DirectSolver(std::string name, bool symmetric) : name_(std::move(name)), symmetric_(symmetric) {}
+  DirectSolver(std::string name, bool symmetric) : name_(std::move(name)), symmetric_(symmetric) { silence(dec_); }
   bool needs_symmetric() const override { return symmetric_; }
   std::string name() const override { return name_; }
   bool factorize(const SparseMatrix& A) override {

@@ -1,0 +1,167 @@
+#include "valve/pipeline/gather.hpp"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <regex>
+
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/error.hpp"
+#include "valve/pipeline/process.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string gnuplot_string(const fs::path& p) {
+  // gnuplot single-quoted strings escape a quote by doubling it.
+  std::string out = "'";
+  for (char c : p.string()) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+}  // namespace
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+std::string to_csv(const CsvTable& table) {
+  std::string out;
+  auto line = [&out](const std::vector<std::string>& fields) {
+    for (size_t i = 0; i < fields.size(); ++i) out += (i ? "," : "") + csv_field(fields[i]);
+    out += "\n";
+  };
+  line(table.header);
+  for (const auto& row : table.rows) line(row);
+  return out;
+}
+
+std::string cell_text(const ojson* v) {
+  if (!v || v->is_null()) return "";
+  if (v->is_number_float()) {
+    const double x = v->get<double>();
+    if (!std::isfinite(x)) return "";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.10g", x);
+    return buf;
+  }
+  if (v->is_number()) return v->dump();
+  if (v->is_string()) return v->get<std::string>();
+  if (v->is_boolean()) return v->get<bool>() ? "true" : "false";
+  return v->dump();
+}
+
+CsvTable gather_table(const PipelineSpec& spec, const GatherSpec& gather, const std::vector<RunPlan>& runs,
+                      const fs::path& out_dir, std::vector<MissingSummary>* missing) {
+  CsvTable table;
+  for (const auto& c : gather.columns) table.header.push_back(c.header);
+  for (const auto& run : runs) {
+    const Bindings b = run_bindings(spec, run, out_dir);
+    const fs::path file = run.run_dir / substitute(gather.summary, b, spec.file, gather.key + ".summary");
+    ojson summary;  // null when missing: every summary: cell is then empty
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) {
+      if (missing) missing->push_back({run.run_id, file.string() + ": no such file"});
+    } else {
+      try {
+        summary = ojson::parse(read_text_file(file));
+      } catch (const std::exception& e) {
+        if (missing) missing->push_back({run.run_id, file.string() + ": not valid JSON"});
+        summary = nullptr;
+      }
+    }
+    std::vector<const ojson*> elements{nullptr};
+    if (!gather.rows.empty()) {
+      const ojson* rows = find_path(summary, gather.rows);
+      if (rows && rows->is_array()) {
+        elements.clear();
+        for (const auto& e : *rows) elements.push_back(&e);
+      }
+    }
+    for (const ojson* element : elements) {
+      std::vector<std::string> row;
+      for (const auto& c : gather.columns) {
+        switch (c.source) {
+          case ColumnSpec::Source::literal:
+            row.push_back(substitute(c.text, b, spec.file, gather.key + ".columns." + c.header));
+            break;
+          case ColumnSpec::Source::summary:
+            row.push_back(cell_text(find_path(summary, c.text)));
+            break;
+          case ColumnSpec::Source::row:
+            row.push_back(cell_text(element ? find_path(*element, c.text) : nullptr));
+            break;
+        }
+      }
+      table.rows.push_back(row);
+    }
+  }
+  return table;
+}
+
+GatherResult write_gather(const PipelineSpec& spec, const GatherSpec& gather, const std::vector<RunPlan>& runs,
+                          const fs::path& out_dir) {
+  GatherResult result;
+  const CsvTable table = gather_table(spec, gather, runs, out_dir, &result.missing);
+  result.path = out_dir / gather.csv;
+  result.rows = table.rows.size();
+  write_file_atomic(result.path, to_csv(table));
+  return result;
+}
+
+std::string plot_script(const PipelineSpec& spec, const PlotSpec& plot, const fs::path& out_dir,
+                        const fs::path& png_path) {
+  const Bindings b{{"csv", (out_dir / plot.csv).string()},
+                   {"png", (out_dir / plot.png).string()},
+                   {"out_dir", out_dir.string()},
+                   {"pipeline_dir", spec.pipeline_dir.string()}};
+  const std::string text = substitute(plot.gnuplot, b, spec.file, plot.key + ".gnuplot");
+  static const std::regex sets_terminal(R"(\bset\s+t(e|er|erm|ermi|ermin|ermina|erminal)?\b)");
+  std::string script = "# " + spec.file + " " + plot.key + ", written by valve-pipeline\n";
+  if (!std::regex_search(text, sets_terminal)) script += "set terminal pngcairo noenhanced size 900,600\n";
+  script += "set datafile separator ','\n";
+  script += "set output " + gnuplot_string(png_path) + "\n";
+  script += text;
+  if (!text.empty() && text.back() != '\n') script += "\n";
+  script += "unset output\n";  // closes the file before gnuplot exits
+  return script;
+}
+
+PlotResult render_plot(const PipelineSpec& spec, const PlotSpec& plot, const fs::path& out_dir,
+                       const std::optional<fs::path>& gnuplot) {
+  PlotResult result{plot.png, "made", ""};
+  const fs::path png = out_dir / plot.png;
+  write_file_atomic(out_dir / (plot.png + ".gp"), plot_script(spec, plot, out_dir, png));
+  if (!gnuplot) return {plot.png, "skipped", "gnuplot is not on PATH"};
+
+  // Run a copy of the script that writes a temporary image, so a failed plot never leaves a
+  // half-written PNG and never replaces a good one from an earlier run.
+  const std::string tag = ".tmp" + std::to_string(::getpid());
+  const fs::path tmp_png = png.parent_path() / ("." + png.filename().string() + tag + ".png");
+  const fs::path tmp_script = png.parent_path() / ("." + png.filename().string() + tag + ".gp");
+  const fs::path log = out_dir / (plot.png + ".log");
+  write_file_atomic(tmp_script, plot_script(spec, plot, out_dir, tmp_png));
+  const ProcessExit exit = run_process(*gnuplot, {tmp_script.string()}, out_dir, log);
+  std::error_code ec;
+  fs::remove(tmp_script, ec);
+  if (exit.code != 0) {
+    result = {plot.png, "failed",
+              "gnuplot exited with " + std::to_string(exit.code) + (exit.error.empty() ? "" : " (" + exit.error + ")") +
+                  ", see " + log.string()};
+  } else if (!fs::is_regular_file(tmp_png, ec) || fs::file_size(tmp_png, ec) == 0) {
+    result = {plot.png, "failed", "gnuplot wrote no image, see " + log.string()};
+  } else {
+    fs::rename(tmp_png, png, ec);
+    if (ec) result = {plot.png, "failed", png.string() + ": cannot move the image into place: " + ec.message()};
+  }
+  fs::remove(tmp_png, ec);
+  return result;
+}
+
+}  // namespace valve

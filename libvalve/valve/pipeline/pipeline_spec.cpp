@@ -1,0 +1,597 @@
+#include "valve/pipeline/pipeline_spec.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <regex>
+#include <set>
+
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/error.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Big sweeps are almost always a typo (a range step of 0.001 instead of 0.1); a pipeline
+// that really needs more runs should be split.
+constexpr std::size_t max_runs = 100000;
+
+const std::vector<std::string> run_builtins{"run_dir", "run_id", "out_dir", "pipeline_dir"};
+const std::vector<std::string> plot_builtins{"csv", "png", "out_dir", "pipeline_dir"};
+
+std::string describe(const ojson& v) {
+  std::string dump = v.dump();
+  if (dump.size() > 60) dump = dump.substr(0, 57) + "...";
+  return std::string(v.type_name()) + " " + dump;
+}
+
+[[noreturn]] void fail(const std::string& file, const std::string& key, const std::string& expected,
+                       const std::string& found) {
+  throw_input_error(file, key, expected, found);
+}
+
+std::string join(const std::vector<std::string>& v, const std::string& sep) {
+  std::string out;
+  for (const auto& s : v) out += (out.empty() ? "" : sep) + s;
+  return out;
+}
+
+std::string child_key(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+void check_keys(const ojson& obj, const std::vector<std::string>& allowed, const std::string& file,
+                const std::string& path) {
+  for (auto it = obj.begin(); it != obj.end(); ++it)
+    if (std::find(allowed.begin(), allowed.end(), it.key()) == allowed.end())
+      fail(file, child_key(path, it.key()), "a known key (" + join(allowed, ", ") + ")", "an unknown key");
+}
+
+bool is_identifier(const std::string& s) {
+  if (s.empty() || !(std::isalpha(static_cast<unsigned char>(s[0])) || s[0] == '_')) return false;
+  return std::all_of(s.begin(), s.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+// A placeholder reference: an identifier, then optional ".field" parts (letters, digits, _ -).
+bool is_reference(const std::string& s) {
+  const auto dot = s.find('.');
+  if (!is_identifier(s.substr(0, dot))) return false;
+  if (dot == std::string::npos) return true;
+  std::string part;
+  for (size_t i = dot + 1; i <= s.size(); ++i) {
+    if (i == s.size() || s[i] == '.') {
+      if (part.empty()) return false;
+      part.clear();
+    } else if (std::isalnum(static_cast<unsigned char>(s[i])) || s[i] == '_' || s[i] == '-') {
+      part += s[i];
+    } else {
+      return false;
+    }
+  }
+  return true;
+}
+
+struct Piece {
+  bool placeholder = false;
+  std::string text;  // literal text, or the reference inside ${...}
+};
+
+std::vector<Piece> split_placeholders(const std::string& s, const std::string& file, const std::string& key) {
+  std::vector<Piece> out;
+  std::string literal;
+  for (size_t i = 0; i < s.size();) {
+    if (s.compare(i, 3, "$${") == 0) {
+      literal += "${";
+      i += 3;
+    } else if (s.compare(i, 2, "${") == 0) {
+      const auto close = s.find('}', i + 2);
+      if (close == std::string::npos) fail(file, key, "a closing } after ${", s.substr(i));
+      const std::string inner = s.substr(i + 2, close - i - 2);
+      if (!is_reference(inner)) fail(file, key, "a variable name inside ${...}", "${" + inner + "}");
+      if (!literal.empty()) out.push_back({false, literal});
+      literal.clear();
+      out.push_back({true, inner});
+      i = close + 1;
+    } else {
+      literal += s[i++];
+    }
+  }
+  if (!literal.empty()) out.push_back({false, literal});
+  return out;
+}
+
+std::pair<std::string, std::string> split_reference(const std::string& ref) {
+  const auto dot = ref.find('.');
+  if (dot == std::string::npos) return {ref, ""};
+  return {ref.substr(0, dot), ref.substr(dot + 1)};
+}
+
+/// Checks every placeholder of `text` against the builtins and variables before anything
+/// runs, so that a typo in the last step of the last run is found in the first second.
+void check_placeholders(const std::string& text, const std::vector<std::string>& builtins,
+                        const std::vector<SweepVariable>& variables, const std::string& file,
+                        const std::string& key) {
+  for (const auto& piece : split_placeholders(text, file, key)) {
+    if (!piece.placeholder) continue;
+    const auto [name, field] = split_reference(piece.text);
+    const auto var = std::find_if(variables.begin(), variables.end(),
+                                  [&](const SweepVariable& v) { return v.name == name; });
+    if (var == variables.end()) {
+      if (std::find(builtins.begin(), builtins.end(), name) == builtins.end())
+        fail(file, key, "a known variable", "${" + piece.text + "}");
+      if (!field.empty()) fail(file, key, "a field of an object-valued variable", "${" + piece.text + "}");
+      continue;
+    }
+    if (field.empty()) continue;
+    for (size_t k = 0; k < var->values.size(); ++k)
+      if (!find_path(var->values[k], field))
+        fail(file, key, "a field " + field + " in every value of " + name,
+             "${" + piece.text + "} (missing in variables." + name + "[" + std::to_string(k) + "])");
+  }
+}
+
+std::string required_string(const ojson& obj, const std::string& k, const std::string& file,
+                            const std::string& path) {
+  const std::string key = child_key(path, k);
+  if (!obj.contains(k)) fail(file, key, "a string", "nothing (the key is required)");
+  const ojson& v = obj.at(k);
+  if (!v.is_string() || v.get<std::string>().empty()) fail(file, key, "a non-empty string", describe(v));
+  return v.get<std::string>();
+}
+
+/// A relative path that stays inside the folder it is relative to.
+std::string inside_path(const ojson& obj, const std::string& k, const std::string& file,
+                        const std::string& path) {
+  const std::string text = required_string(obj, k, file, path);
+  const fs::path p = fs::path(text).lexically_normal();
+  bool escapes = p.is_absolute() || !p.has_filename() || p.empty();
+  for (const auto& part : p)
+    if (part == "..") escapes = true;
+  // runs/ and the summary belong to the runner.
+  escapes = escapes || *p.begin() == "runs" || p == "pipeline.summary.json";
+  if (escapes)
+    fail(file, child_key(path, k), "a relative file path inside the output folder (not in runs/, not pipeline.summary.json)",
+         "\"" + text + "\"");
+  return p.string();
+}
+
+bool is_file_name_part(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+}
+
+SweepVariable parse_variable(const std::string& name, const ojson& v, const std::string& file) {
+  const std::string key = "variables." + name;
+  if (!is_identifier(name))
+    fail(file, key, "a variable name of letters, digits and _ (not starting with a digit)", "\"" + name + "\"");
+  for (const auto* list : {&run_builtins, &plot_builtins})
+    if (std::find(list->begin(), list->end(), name) != list->end())
+      fail(file, key, "a variable name other than the built-ins (" + join(run_builtins, ", ") + ", csv, png)",
+           "\"" + name + "\"");
+  SweepVariable var{name, {}};
+  if (v.is_array()) {
+    if (v.empty()) fail(file, key, "a non-empty list of values", "an empty list");
+    for (size_t k = 0; k < v.size(); ++k) {
+      const ojson& e = v[k];
+      if (e.is_number_float() && !std::isfinite(e.get<double>()))
+        fail(file, key + "[" + std::to_string(k) + "]", "a finite number", describe(e));
+      if (!(e.is_number() || e.is_string() || e.is_boolean() || e.is_object()))
+        fail(file, key + "[" + std::to_string(k) + "]", "a number, string, boolean or object", describe(e));
+      var.values.push_back(e);
+    }
+    return var;
+  }
+  if (!v.is_object() || !v.contains("range"))
+    fail(file, key, "a list of values or {\"range\": [a, b]} or {\"range\": [a, b, step]}", describe(v));
+  check_keys(v, {"range"}, file, key);
+  const ojson& r = v["range"];
+  const std::string rkey = key + ".range";
+  if (!r.is_array() || r.size() < 2 || r.size() > 3) fail(file, rkey, "[a, b] or [a, b, step]", describe(r));
+  bool integral = true;
+  for (const auto& e : r) {
+    if (!e.is_number() || !std::isfinite(e.get<double>())) fail(file, rkey, "finite numbers", describe(r));
+    integral = integral && (e.is_number_integer() || e.get<double>() == std::floor(e.get<double>()));
+  }
+  const double a = r[0].get<double>(), b = r[1].get<double>();
+  const double step = r.size() == 3 ? r[2].get<double>() : (b >= a ? 1.0 : -1.0);
+  if (step == 0) fail(file, rkey, "a nonzero step", describe(r));
+  if ((b - a) * step < 0) fail(file, rkey, "a step that moves from a towards b", describe(r));
+  // The small tolerance keeps b when (b - a) / step is an integer up to rounding (0.1 steps).
+  const double count = std::floor((b - a) / step + 1e-9) + 1;
+  if (count > static_cast<double>(max_runs))
+    fail(file, rkey, "at most " + std::to_string(max_runs) + " values", format_number(count));
+  // Values are a + k*step rounded to the decimals of a and step, so that 0.1 steps give 0.3,
+  // not 0.30000000000000004.
+  auto decimals = [](double x) {
+    const std::string s = format_number(x);
+    const auto dot = s.find('.');
+    return (dot == std::string::npos || s.find('e') != std::string::npos) ? -1 : int(s.size() - dot - 1);
+  };
+  const int da = decimals(a), ds = decimals(step);
+  const int digits = (da < 0 && a != std::floor(a)) || (ds < 0 && step != std::floor(step)) ? -1 : std::max({da, ds, 0});
+  for (long k = 0; k < static_cast<long>(count); ++k) {
+    double x = a + static_cast<double>(k) * step;
+    if (integral) {
+      var.values.emplace_back(static_cast<long long>(std::llround(x)));
+      continue;
+    }
+    if (digits >= 0) {
+      const double scale = std::pow(10.0, digits);
+      x = std::round(x * scale) / scale;
+    }
+    var.values.emplace_back(x);
+  }
+  return var;
+}
+
+StepSpec parse_step(const ojson& s, size_t i, const std::vector<SweepVariable>& variables,
+                    const std::string& file) {
+  StepSpec step;
+  step.key = "steps[" + std::to_string(i) + "]";
+  if (!s.is_object()) fail(file, step.key, "an object with stage and args", describe(s));
+  check_keys(s, {"name", "stage", "args", "allow_exit"}, file, step.key);
+  step.stage = required_string(s, "stage", file, step.key);
+  const std::string suffix = step.stage.rfind("valve-", 0) == 0 ? step.stage.substr(6) : "";
+  if (suffix.empty() || !std::all_of(suffix.begin(), suffix.end(), is_file_name_part))
+    fail(file, step.key + ".stage", "a stage name valve-<name>", "\"" + step.stage + "\"");
+  step.name = s.contains("name") ? required_string(s, "name", file, step.key) : step.stage;
+  if (step.name[0] == '.' || !std::all_of(step.name.begin(), step.name.end(), is_file_name_part))
+    fail(file, step.key + ".name", "a step name of letters, digits, _ . - (it names the log file)",
+         "\"" + step.name + "\"");
+  if (!s.contains("args")) fail(file, step.key + ".args", "a list of strings", "nothing (the key is required)");
+  const ojson& args = s["args"];
+  if (!args.is_array()) fail(file, step.key + ".args", "a list of strings", describe(args));
+  for (size_t k = 0; k < args.size(); ++k) {
+    const std::string key = step.key + ".args[" + std::to_string(k) + "]";
+    if (!args[k].is_string() && !args[k].is_number()) fail(file, key, "a string", describe(args[k]));
+    step.args.push_back(value_text(args[k]));
+    check_placeholders(step.args.back(), run_builtins, variables, file, key);
+  }
+  if (s.contains("allow_exit")) {
+    const ojson& ae = s["allow_exit"];
+    const std::string key = step.key + ".allow_exit";
+    if (!ae.is_array() || ae.empty()) fail(file, key, "a non-empty list of exit codes", describe(ae));
+    step.allow_exit.clear();
+    for (const auto& e : ae) {
+      if (!e.is_number_integer() || e.get<long long>() < 0 || e.get<long long>() > 255)
+        fail(file, key, "exit codes in [0, 255]", describe(ae));
+      step.allow_exit.push_back(e.get<int>());
+    }
+  }
+  return step;
+}
+
+GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariable>& variables,
+                        const std::string& file) {
+  GatherSpec spec;
+  spec.key = "gather[" + std::to_string(i) + "]";
+  if (!g.is_object()) fail(file, spec.key, "an object with csv, summary and columns", describe(g));
+  check_keys(g, {"csv", "summary", "rows", "columns"}, file, spec.key);
+  spec.csv = inside_path(g, "csv", file, spec.key);
+  spec.summary = required_string(g, "summary", file, spec.key);
+  check_placeholders(spec.summary, run_builtins, variables, file, spec.key + ".summary");
+  if (g.contains("rows")) spec.rows = required_string(g, "rows", file, spec.key);
+  const std::string ckey = spec.key + ".columns";
+  if (!g.contains("columns")) fail(file, ckey, "an object of column specs", "nothing (the key is required)");
+  const ojson& cols = g["columns"];
+  if (!cols.is_object() || cols.empty()) fail(file, ckey, "a non-empty object of column specs", describe(cols));
+  for (auto it = cols.begin(); it != cols.end(); ++it) {
+    const std::string key = ckey + "." + it.key();
+    if (!it.value().is_string())
+      fail(file, key, "a string: text with ${...}, \"summary:<path>\" or \"row:<path>\"", describe(it.value()));
+    const std::string text = it.value().get<std::string>();
+    ColumnSpec col{it.key(), ColumnSpec::Source::literal, text};
+    if (text.rfind("summary:", 0) == 0) {
+      col.source = ColumnSpec::Source::summary;
+      col.text = text.substr(8);
+    } else if (text.rfind("row:", 0) == 0) {
+      if (spec.rows.empty()) fail(file, key, "a \"rows\" path in " + spec.key + " for a row: column", "\"" + text + "\"");
+      col.source = ColumnSpec::Source::row;
+      col.text = text.substr(4);
+    } else {
+      check_placeholders(text, run_builtins, variables, file, key);
+    }
+    spec.columns.push_back(col);
+  }
+  return spec;
+}
+
+PlotSpec parse_plot(const ojson& p, size_t i, const std::vector<GatherSpec>& gather, const std::string& file) {
+  PlotSpec plot;
+  plot.key = "plots[" + std::to_string(i) + "]";
+  if (!p.is_object()) fail(file, plot.key, "an object with png, csv and gnuplot", describe(p));
+  check_keys(p, {"png", "csv", "gnuplot"}, file, plot.key);
+  plot.png = inside_path(p, "png", file, plot.key);
+  plot.csv = inside_path(p, "csv", file, plot.key);
+  std::vector<std::string> tables;
+  for (const auto& g : gather) tables.push_back(g.csv);
+  if (std::find(tables.begin(), tables.end(), plot.csv) == tables.end())
+    fail(file, plot.key + ".csv", "one of the gather tables (" + join(tables, ", ") + ")", "\"" + plot.csv + "\"");
+  const std::string gkey = plot.key + ".gnuplot";
+  if (!p.contains("gnuplot")) fail(file, gkey, "a gnuplot script", "nothing (the key is required)");
+  const ojson& text = p["gnuplot"];
+  if (text.is_string()) {
+    plot.gnuplot = text.get<std::string>();
+  } else if (text.is_array() && !text.empty()) {
+    for (const auto& line : text) {
+      if (!line.is_string()) fail(file, gkey, "a string or a list of strings (lines)", describe(text));
+      plot.gnuplot += line.get<std::string>() + "\n";
+    }
+  } else {
+    fail(file, gkey, "a string or a list of strings (lines)", describe(text));
+  }
+  check_placeholders(plot.gnuplot, plot_builtins, {}, file, gkey);
+  // The runner owns the output file: it writes to a temporary image and renames it.
+  static const std::regex sets_output(R"(\bset\s+o(u|ut|utp|utpu|utput)?\b)");
+  std::smatch m;
+  if (std::regex_search(plot.gnuplot, m, sets_output))
+    fail(file, gkey, "a script without set output (the runner writes the image to png)", "\"" + m.str() + "\"");
+  return plot;
+}
+
+}  // namespace
+
+fs::path normalized_dir(const fs::path& dir) {
+  fs::path a = fs::absolute(dir).lexically_normal();
+  if (!a.has_filename() && a.has_parent_path() && a != a.root_path()) a = a.parent_path();
+  return a;
+}
+
+ojson load_pipeline_json(const fs::path& path) {
+  const std::string text = read_text_file(path);
+  try {
+    return ojson::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const ojson::parse_error& e) {
+    // Turn the byte offset into a line number: people open files by line.
+    const size_t offset = std::min<size_t>(e.byte, text.size());
+    const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+    throw InputError(path.string() + ": line " + std::to_string(line) +
+                     ": expected valid JSON, found a syntax error (" + e.what() + ")");
+  }
+}
+
+PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir) {
+  if (!doc.is_object()) fail(file, "(top level)", "an object", describe(doc));
+  check_keys(doc, {"name", "description", "variables", "sweep", "steps", "gather", "plots"}, file, "");
+  PipelineSpec spec;
+  spec.file = file;
+  spec.pipeline_dir = normalized_dir(pipeline_dir);
+  spec.source = doc;
+  spec.name = doc.contains("name") ? required_string(doc, "name", file, "") : fs::path(file).stem().string();
+  if (doc.contains("description")) {
+    if (!doc["description"].is_string()) fail(file, "description", "a string", describe(doc["description"]));
+    spec.description = doc["description"].get<std::string>();
+  }
+
+  if (doc.contains("variables")) {
+    const ojson& vars = doc["variables"];
+    if (!vars.is_object()) fail(file, "variables", "an object of name: list of values", describe(vars));
+    for (auto it = vars.begin(); it != vars.end(); ++it) spec.variables.push_back(parse_variable(it.key(), it.value(), file));
+  }
+  if (doc.contains("sweep")) {
+    const ojson& s = doc["sweep"];
+    if (!s.is_string() || (s != "grid" && s != "zip")) fail(file, "sweep", "\"grid\" or \"zip\"", describe(s));
+    spec.sweep = s == "zip" ? SweepKind::zip : SweepKind::grid;
+  }
+  if (spec.sweep == SweepKind::zip) {
+    for (const auto& v : spec.variables)
+      if (v.values.size() != spec.variables.front().values.size())
+        fail(file, "variables." + v.name,
+             std::to_string(spec.variables.front().values.size()) + " values (as many as variables." +
+                 spec.variables.front().name + ", sweep zip)",
+             std::to_string(v.values.size()));
+  } else {
+    double runs = 1;
+    for (const auto& v : spec.variables) runs *= static_cast<double>(v.values.size());
+    if (runs > static_cast<double>(max_runs))
+      fail(file, "variables", "at most " + std::to_string(max_runs) + " runs in the grid", format_number(runs));
+  }
+
+  if (!doc.contains("steps")) fail(file, "steps", "a list of steps", "nothing (the key is required)");
+  const ojson& steps = doc["steps"];
+  if (!steps.is_array() || steps.empty()) fail(file, "steps", "a non-empty list of steps", describe(steps));
+  for (size_t i = 0; i < steps.size(); ++i) {
+    spec.steps.push_back(parse_step(steps[i], i, spec.variables, file));
+    for (size_t j = 0; j + 1 < spec.steps.size(); ++j)
+      if (spec.steps[j].name == spec.steps.back().name)
+        fail(file, spec.steps.back().key + ".name",
+             "a step name not used before (set \"name\" when a stage runs twice)",
+             "\"" + spec.steps.back().name + "\" (also " + spec.steps[j].key + ")");
+  }
+
+  if (doc.contains("gather")) {
+    const ojson& g = doc["gather"];
+    if (!g.is_array()) fail(file, "gather", "a list of tables", describe(g));
+    for (size_t i = 0; i < g.size(); ++i) {
+      spec.gather.push_back(parse_gather(g[i], i, spec.variables, file));
+      for (size_t j = 0; j + 1 < spec.gather.size(); ++j)
+        if (spec.gather[j].csv == spec.gather.back().csv)
+          fail(file, spec.gather.back().key + ".csv", "a file name not used before",
+               "\"" + spec.gather.back().csv + "\" (also " + spec.gather[j].key + ")");
+    }
+  }
+  if (doc.contains("plots")) {
+    const ojson& p = doc["plots"];
+    if (!p.is_array()) fail(file, "plots", "a list of plots", describe(p));
+    for (size_t i = 0; i < p.size(); ++i) {
+      spec.plots.push_back(parse_plot(p[i], i, spec.gather, file));
+      for (size_t j = 0; j + 1 < spec.plots.size(); ++j)
+        if (spec.plots[j].png == spec.plots.back().png)
+          fail(file, spec.plots.back().key + ".png", "a file name not used before",
+               "\"" + spec.plots.back().png + "\" (also " + spec.plots[j].key + ")");
+    }
+  }
+  return spec;
+}
+
+PipelineSpec load_pipeline(const fs::path& path) {
+  return parse_pipeline(load_pipeline_json(path), path.string(), fs::absolute(path).parent_path());
+}
+
+std::vector<ojson> expand_sweep(const std::vector<SweepVariable>& variables, SweepKind sweep) {
+  std::vector<ojson> runs;
+  if (variables.empty()) return {ojson::object()};
+  if (sweep == SweepKind::zip) {
+    for (size_t k = 0; k < variables.front().values.size(); ++k) {
+      ojson a = ojson::object();
+      for (const auto& v : variables) a[v.name] = v.values.at(k);
+      runs.push_back(a);
+    }
+    return runs;
+  }
+  size_t total = 1;
+  for (const auto& v : variables) total *= v.values.size();
+  for (size_t index = 0; index < total; ++index) {
+    // Mixed-radix digits of index, last variable fastest: the order of nested loops.
+    std::vector<size_t> digit(variables.size());
+    size_t rest = index;
+    for (size_t i = variables.size(); i-- > 0;) {
+      digit[i] = rest % variables[i].values.size();
+      rest /= variables[i].values.size();
+    }
+    ojson a = ojson::object();
+    for (size_t i = 0; i < variables.size(); ++i) a[variables[i].name] = variables[i].values[digit[i]];
+    runs.push_back(a);
+  }
+  return runs;
+}
+
+std::vector<std::string> make_run_ids(const std::vector<ojson>& assignments) {
+  auto slug = [](const std::string& s) {
+    std::string out;
+    bool pending = false;
+    for (char c : s) {
+      if (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '+' || c == '-') {
+        if (pending && !out.empty()) out += '-';
+        pending = false;
+        out += c;
+      } else {
+        pending = true;
+      }
+    }
+    if (out.size() > 40) out.resize(40);
+    return out.empty() ? std::string("empty") : out;
+  };
+  std::vector<std::string> ids;
+  std::set<std::string> used;
+  for (const auto& a : assignments) {
+    std::string base;
+    for (auto it = a.begin(); it != a.end(); ++it)
+      base += (base.empty() ? "" : "_") + it.key() + "-" + slug(value_text(it.value()));
+    if (base.empty()) base = "single";
+    if (base.size() > 200) base.resize(200);  // file names stop at 255 bytes
+    std::string id = base;
+    for (int n = 2; used.count(id); ++n) id = base + "-" + std::to_string(n);
+    used.insert(id);
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+Bindings run_bindings(const PipelineSpec& spec, const RunPlan& run, const fs::path& out_dir) {
+  Bindings b;
+  for (auto it = run.variables.begin(); it != run.variables.end(); ++it) b[it.key()] = it.value();
+  b["run_dir"] = run.run_dir.string();
+  b["run_id"] = run.run_id;
+  b["out_dir"] = normalized_dir(out_dir).string();
+  b["pipeline_dir"] = spec.pipeline_dir.string();
+  return b;
+}
+
+std::vector<RunPlan> expand_runs(const PipelineSpec& spec, const fs::path& out_dir) {
+  const fs::path out = normalized_dir(out_dir);
+  const auto assignments = expand_sweep(spec.variables, spec.sweep);
+  const auto ids = make_run_ids(assignments);
+  std::vector<RunPlan> runs;
+  for (size_t r = 0; r < assignments.size(); ++r) {
+    RunPlan run;
+    run.run_id = ids[r];
+    run.variables = assignments[r];
+    run.run_dir = out / "runs" / run.run_id;
+    const Bindings b = run_bindings(spec, run, out);
+    for (const auto& s : spec.steps) {
+      ResolvedStep step{s.name, s.stage, {}, s.allow_exit};
+      for (size_t k = 0; k < s.args.size(); ++k)
+        step.args.push_back(substitute(s.args[k], b, spec.file, s.key + ".args[" + std::to_string(k) + "]"));
+      run.steps.push_back(step);
+    }
+    runs.push_back(run);
+  }
+  return runs;
+}
+
+std::string substitute(const std::string& text, const Bindings& bindings, const std::string& file,
+                       const std::string& key) {
+  std::string out;
+  for (const auto& piece : split_placeholders(text, file, key)) {
+    if (!piece.placeholder) {
+      out += piece.text;
+      continue;
+    }
+    const auto [name, field] = split_reference(piece.text);
+    const auto it = bindings.find(name);
+    if (it == bindings.end()) fail(file, key, "a known variable", "${" + piece.text + "}");
+    const ojson* v = find_path(it->second, field);
+    if (!v) fail(file, key, "a field " + field + " in " + name, "${" + piece.text + "}");
+    out += value_text(*v);
+  }
+  return out;
+}
+
+std::string format_number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  if (x == std::floor(x) && std::fabs(x) < 1e15) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f", x == 0 ? 0.0 : x);  // no "-0"
+    return buf;
+  }
+  char buf[40];
+  for (int p = 1; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
+}
+
+std::string value_text(const ojson& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) return format_number(v.get<double>());
+  if (v.is_number()) return v.dump();
+  if (v.is_boolean()) return v.get<bool>() ? "true" : "false";
+  if (v.is_null()) return "";
+  if (v.is_object() && v.contains("label")) return value_text(v["label"]);
+  return v.dump();
+}
+
+const ojson* find_path(const ojson& root, const std::string& dot_path) {
+  const ojson* node = &root;
+  if (dot_path.empty()) return node;
+  size_t start = 0;
+  while (true) {
+    const auto dot = dot_path.find('.', start);
+    const std::string part = dot_path.substr(start, dot == std::string::npos ? std::string::npos : dot - start);
+    if (node->is_object()) {
+      const auto it = node->find(part);
+      if (it == node->end()) return nullptr;
+      node = &*it;
+    } else if (node->is_array()) {
+      if (part.empty() || !std::all_of(part.begin(), part.end(), [](char c) { return c >= '0' && c <= '9'; }) ||
+          part.size() > 9)
+        return nullptr;
+      const size_t index = std::stoul(part);
+      if (index >= node->size()) return nullptr;
+      node = &(*node)[index];
+    } else {
+      return nullptr;
+    }
+    if (dot == std::string::npos) return node;
+    start = dot + 1;
+  }
+}
+
+}  // namespace valve

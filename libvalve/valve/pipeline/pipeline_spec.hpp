@@ -1,0 +1,179 @@
+#pragma once
+// A pipeline JSON: parsing, validation, sweep expansion and ${...} substitution.
+//
+// valve-pipeline runs a pipeline file: a sequence of stage invocations ("steps"), repeated
+// for every combination of sweep variables ("runs"), then gathered into CSV tables and
+// plotted. Everything below is checked before anything runs; a bad file is one InputError
+// line "P.json: <key path>: expected ..., found ..." (exit 2) and nothing is written.
+//
+// {
+//   "name": "seed_biaxial",              // optional, default: the file name without .json
+//   "description": "...",                // optional free text
+//   "variables": {                       // optional sweep variables, in this order
+//     "angle": [0, 45],                  //   a non-empty list of numbers, strings, booleans or objects
+//     "ratio": [{"label": "20:60", "sx": "20 kPa"}, {"label": "60:60", "sx": "60 kPa"}],
+//     "mesh": {"range": [1, 10]}         //   a..b inclusive, step 1 (or -1 when b < a);
+//   },                                   //   {"range": [a, b, step]} with any nonzero step
+//   "sweep": "grid",                     // "grid" (default): Cartesian product, the first
+//                                        // variable varies slowest; "zip": the lists (of equal
+//                                        // length) are taken together, run k uses value k of each
+//   "steps": [                           // required, non-empty; run in order inside a run
+//     {"name": "mesh",                   // optional, default the stage name; unique; names the log
+//      "stage": "valve-generate",        // required: "valve-<name>", see process.hpp for lookup
+//      "args": ["square_patch", "--out", "${run_dir}/mesh"],   // required: strings (or numbers)
+//      "allow_exit": [0, 3]}             // optional exit codes that do not fail the run, default [0]
+//   ],
+//   "gather": [                          // optional: one CSV in DIR per entry
+//     {"csv": "biaxial.csv",             // relative path inside DIR, unique
+//      "summary": "sim/simulate.summary.json",   // JSON file relative to each run folder
+//      "rows": "metrics.biaxial.components",     // optional: an array in it, one row per element
+//      "columns": {"angle": "${angle}",          // ordered; a string with placeholders,
+//                  "error": "row:error_pct",     // "row:<path>" inside the current element,
+//                  "status": "summary:status"}}  // "summary:<path>" inside the summary
+//   ],
+//   "plots": [                           // optional: rendered with gnuplot when it is on PATH
+//     {"png": "error.png", "csv": "biaxial.csv",   // csv must be one of the gather tables
+//      "gnuplot": "plot '${csv}' using 2:5 with points"}   // a string or a list of lines
+//   ]
+// }
+// Comments (// and /* */) are allowed in pipeline files.
+//
+// Placeholders: ${name} is a variable's value; ${name.field} (a dot path, array indices as
+// numbers) a field of an object-valued one. A whole object substitutes as its "label" field
+// when it has one, else as compact JSON. Numbers substitute in shortest round-trip form
+// (45, 0.1, 1e-05), booleans as true/false. Built-ins: ${run_dir} (absolute run folder
+// DIR/runs/<run_id>), ${run_id}, ${out_dir} (absolute DIR), ${pipeline_dir} (absolute folder
+// of P.json); in plots only ${csv} and ${png} (absolute paths in DIR), ${out_dir} and
+// ${pipeline_dir}. "$${" writes a literal "${". An unknown name, a field missing from any
+// value, or an unterminated placeholder is an InputError naming the key path.
+//
+// Outputs in DIR: runs/<run_id>/ (one folder per run, emptied when the run starts; the steps
+// run there as working directory and log stdout+stderr to <step>.log), the gather CSVs, the
+// plots with their gnuplot scripts (<png>.gp) and logs (<png>.log), pipeline.summary.json.
+//
+// Runs: run_id is a slug of the variable values, "angle-45_ratio-20-60_mesh-3" (characters
+// other than letters, digits, '.', '+' and '-' become '-'; an object value uses its "label");
+// a collision gets a "-2", "-3", ... suffix; no variables gives the single run "single".
+#include <cstddef>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace valve {
+
+/// Pipeline files keep their key order (variables, columns): ordered JSON throughout.
+using ojson = nlohmann::ordered_json;
+
+enum class SweepKind { grid, zip };
+
+struct SweepVariable {
+  std::string name;
+  std::vector<ojson> values;  ///< non-empty; numbers, strings, booleans or objects
+};
+
+struct StepSpec {
+  std::string name;               ///< unique inside the pipeline; the log is <name>.log
+  std::string stage;              ///< "valve-<name>"
+  std::vector<std::string> args;  ///< with placeholders
+  std::vector<int> allow_exit{0};
+  std::string key;                ///< "steps[i]", for messages
+};
+
+/// One CSV column: a literal (with placeholders), or a path into the summary or the row.
+struct ColumnSpec {
+  enum class Source { literal, summary, row };
+  std::string header;
+  Source source = Source::literal;
+  std::string text;  ///< the literal, or the dot path after "summary:" / "row:"
+};
+
+struct GatherSpec {
+  std::string csv;      ///< relative to DIR
+  std::string summary;  ///< relative to the run folder, with placeholders
+  std::string rows;     ///< dot path of an array in the summary; empty: one row per run
+  std::vector<ColumnSpec> columns;
+  std::string key;      ///< "gather[i]"
+};
+
+struct PlotSpec {
+  std::string png;      ///< relative to DIR
+  std::string csv;      ///< one of the gather CSVs
+  std::string gnuplot;  ///< script text with placeholders
+  std::string key;      ///< "plots[i]"
+};
+
+struct PipelineSpec {
+  std::string file;                    ///< as given, for messages
+  std::filesystem::path pipeline_dir;  ///< absolute folder of the file
+  std::string name, description;
+  std::vector<SweepVariable> variables;
+  SweepKind sweep = SweepKind::grid;
+  std::vector<StepSpec> steps;
+  std::vector<GatherSpec> gather;
+  std::vector<PlotSpec> plots;
+  ojson source;                        ///< the document as read
+};
+
+/// One step of one run with every placeholder substituted.
+struct ResolvedStep {
+  std::string name, stage;
+  std::vector<std::string> args;
+  std::vector<int> allow_exit;
+};
+
+struct RunPlan {
+  std::string run_id;
+  ojson variables = ojson::object();  ///< name -> value, in declaration order
+  std::filesystem::path run_dir;      ///< absolute
+  std::vector<ResolvedStep> steps;
+};
+
+/// Placeholder name -> value.
+using Bindings = std::map<std::string, ojson>;
+
+/// Reads a pipeline file (comments allowed); malformed JSON is an InputError naming the line.
+ojson load_pipeline_json(const std::filesystem::path& path);
+
+/// Validates `doc` completely (keys, types, sweep shapes, every placeholder) and returns the
+/// spec. `file` names the source in messages; `pipeline_dir` is made absolute.
+PipelineSpec parse_pipeline(const ojson& doc, const std::string& file,
+                            const std::filesystem::path& pipeline_dir);
+
+/// load_pipeline_json + parse_pipeline.
+PipelineSpec load_pipeline(const std::filesystem::path& path);
+
+/// The variable assignments of every run, in run order (grid: first variable slowest).
+/// No variables gives one empty assignment.
+std::vector<ojson> expand_sweep(const std::vector<SweepVariable>& variables, SweepKind sweep);
+
+/// Readable unique run ids for the assignments, in the same order (see the header comment).
+std::vector<std::string> make_run_ids(const std::vector<ojson>& assignments);
+
+/// The runs of the pipeline with their folders under out_dir/runs and substituted steps.
+std::vector<RunPlan> expand_runs(const PipelineSpec& spec, const std::filesystem::path& out_dir);
+
+/// The placeholders of one run: its variables plus run_dir, run_id, out_dir, pipeline_dir.
+Bindings run_bindings(const PipelineSpec& spec, const RunPlan& run, const std::filesystem::path& out_dir);
+
+/// Replaces every ${...} in `text`. Errors name `file` and `key`:
+/// "P.json: steps[1].args[3]: expected a known variable, found ${rato}".
+std::string substitute(const std::string& text, const Bindings& bindings, const std::string& file,
+                       const std::string& key);
+
+/// A value as substituted text (numbers shortest round-trip, objects by label or JSON).
+std::string value_text(const ojson& value);
+
+/// `dir` absolute and normalized, without a trailing separator: what ${out_dir} gives.
+std::filesystem::path normalized_dir(const std::filesystem::path& dir);
+
+/// Shortest decimal text that reads back as exactly `x` ("45", "0.1", "1e-05").
+std::string format_number(double x);
+
+/// The value at a dot path ("metrics.leaflets.0.free_edge_mm"; empty path: `root` itself),
+/// or nullptr when any part is missing.
+const ojson* find_path(const ojson& root, const std::string& dot_path);
+
+}  // namespace valve

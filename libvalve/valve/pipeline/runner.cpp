@@ -1,0 +1,246 @@
+#include "valve/pipeline/runner.hpp"
+
+#include <sys/types.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <map>
+
+#include "valve/core/cli.hpp"
+#include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
+#include "valve/pipeline/process.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+namespace {
+
+bool allowed(const std::vector<int>& codes, int code) {
+  return std::find(codes.begin(), codes.end(), code) != codes.end();
+}
+
+// The state of one run while its steps execute one after another.
+struct ActiveRun {
+  size_t run = 0, step = 0;
+  Stopwatch run_clock, step_clock;
+};
+
+}  // namespace
+
+std::vector<fs::path> resolve_stages(const PipelineSpec& spec, const std::vector<fs::path>& dirs) {
+  std::vector<fs::path> exes;
+  for (const auto& step : spec.steps) {
+    const auto exe = find_stage(step.stage, dirs);
+    if (!exe) {
+      std::string where;
+      for (const auto& d : dirs) where += d.string() + ", ";
+      throw_input_error(spec.file, step.key + ".stage",
+                        "an executable " + step.stage + " in " + where + "or on PATH", "none");
+    }
+    exes.push_back(*exe);
+  }
+  return exes;
+}
+
+std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std::vector<fs::path>& executables,
+                                     int jobs, const RunProgress& progress, bool quiet) {
+  std::vector<RunOutcome> out(runs.size());
+  for (size_t r = 0; r < runs.size(); ++r) {
+    out[r].run_id = runs[r].run_id;
+    out[r].variables = runs[r].variables;
+    for (const auto& s : runs[r].steps) {
+      StepOutcome so;
+      so.name = s.name;
+      out[r].steps.push_back(so);
+    }
+  }
+  std::map<pid_t, ActiveRun> active;
+  size_t next = 0, finished = 0, failed = 0;
+
+  auto report = [&](const std::string& last) {
+    if (!progress) return;
+    double done = static_cast<double>(finished);
+    for (const auto& [pid, a] : active) done += static_cast<double>(a.step) / static_cast<double>(runs[a.run].steps.size());
+    progress(done / static_cast<double>(runs.size()),
+             std::to_string(finished) + "/" + std::to_string(runs.size()) + " runs done" +
+                 (failed ? " (" + std::to_string(failed) + " failed)" : "") + ", " + std::to_string(active.size()) +
+                 " running, last: " + last);
+  };
+
+  auto finish_run = [&](ActiveRun& a, bool ok, const std::string& reason) {
+    RunOutcome& o = out[a.run];
+    o.ok = ok;
+    o.reason = reason;
+    o.wall_time_s = a.run_clock.seconds();
+    ++finished;
+    if (!ok) {
+      ++failed;
+      if (!quiet) std::fprintf(stderr, "[valve-pipeline] run %s failed: %s\n", o.run_id.c_str(), reason.c_str());
+    }
+    report(o.run_id + (ok ? " done" : " failed"));
+  };
+
+  // Starts step a.step of its run, or finishes the run when it has no step left. A step that
+  // cannot start fails the run at once. Returns whether a step is now running.
+  auto start_step = [&](ActiveRun a) {
+    const RunPlan& run = runs[a.run];
+    if (a.step >= run.steps.size()) {
+      finish_run(a, true, "");
+      return false;
+    }
+    const ResolvedStep& step = run.steps[a.step];
+    StepOutcome& so = out[a.run].steps[a.step];
+    a.step_clock = Stopwatch();
+    std::string error;
+    const pid_t pid = spawn_process(executables.at(a.step), step.args, run.run_dir,
+                                    run.run_dir / (step.name + ".log"), error);
+    if (pid < 0) {
+      so.status = "failed";
+      so.exit_code = 127;
+      so.error = error;
+      finish_run(a, false, "step " + step.name + ": " + error);
+      return false;
+    }
+    active[pid] = a;
+    return true;
+  };
+
+  while (next < runs.size() || !active.empty()) {
+    while (active.size() < static_cast<size_t>(std::max(jobs, 1)) && next < runs.size()) {
+      ActiveRun a;
+      a.run = next++;
+      const fs::path& dir = runs[a.run].run_dir;
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+      fs::create_directories(dir, ec);
+      if (ec) {
+        finish_run(a, false, dir.string() + ": cannot create the run folder: " + ec.message());
+        continue;
+      }
+      start_step(a);
+    }
+    if (active.empty()) continue;
+    ProcessExit exit;
+    const pid_t pid = wait_any_child(exit);
+    if (pid < 0) throw Error("valve-pipeline: lost track of the running stages (wait failed)");
+    const auto it = active.find(pid);
+    if (it == active.end()) continue;  // not one of ours
+    ActiveRun a = it->second;
+    active.erase(it);
+    const ResolvedStep& step = runs[a.run].steps[a.step];
+    StepOutcome& so = out[a.run].steps[a.step];
+    so.exit_code = exit.code;
+    so.error = exit.error;
+    so.wall_time_s = a.step_clock.seconds();
+    so.cpu_time_s = exit.cpu_time_s;
+    if (exit.signal == 0 && allowed(step.allow_exit, exit.code)) {
+      so.status = "ok";
+      ++a.step;
+      if (start_step(a)) report(runs[a.run].run_id + " " + step.name + " done");
+    } else {
+      so.status = "failed";
+      const std::string log = (fs::path("runs") / runs[a.run].run_id / (step.name + ".log")).string();
+      finish_run(a, false,
+                 "step " + step.name + (exit.signal ? " was " + exit.error : " exited with " + std::to_string(exit.code)) +
+                     ", see " + log);
+    }
+  }
+  return out;
+}
+
+PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options) {
+  // Everything that can reject the pipeline happens before the output folder is created.
+  const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
+  const std::vector<RunPlan> runs = expand_runs(spec, options.out_dir);
+  const fs::path out = normalized_dir(options.out_dir);
+
+  std::error_code ec;
+  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
+    throw_input_error("valve-pipeline", "--out", "a folder", "the file " + out.string());
+  fs::create_directories(out);
+  StageSummary summary("pipeline", out);
+  if (fs::is_regular_file(spec.file, ec)) summary.add_input("pipeline", spec.file);
+  summary.parameters() = nlohmann::json(spec.source);
+
+  PipelineOutcome result;
+  Progress progress("valve-pipeline", options.quiet);
+  result.runs = execute_runs(
+      runs, exes, options.jobs,
+      [&](double fraction, const std::string& detail) { progress.update(fraction, detail); },
+      options.quiet);
+
+  for (const auto& g : spec.gather) result.tables.push_back(write_gather(spec, g, runs, out));
+  const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
+  if (!spec.plots.empty() && !gnuplot)
+    std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
+  for (const auto& p : spec.plots) result.plots.push_back(render_plot(spec, p, out, gnuplot));
+
+  size_t failed_runs = 0, failed_plots = 0;
+  for (const auto& r : result.runs) failed_runs += r.ok ? 0 : 1;
+  for (const auto& p : result.plots) failed_plots += p.status == "failed" ? 1 : 0;
+  progress.finish(std::to_string(runs.size() - failed_runs) + "/" + std::to_string(runs.size()) + " runs ok");
+
+  result.status = failed_runs + failed_plots == 0 ? "ok" : "failed";
+  if (failed_runs) {
+    const RunOutcome& first = *std::find_if(result.runs.begin(), result.runs.end(), [](const RunOutcome& r) { return !r.ok; });
+    result.reason = std::to_string(failed_runs) + " of " + std::to_string(runs.size()) + " runs failed (first: " +
+                    first.run_id + ", " + first.reason + ")";
+  } else if (failed_plots) {
+    const PlotResult& first = *std::find_if(result.plots.begin(), result.plots.end(),
+                                            [](const PlotResult& p) { return p.status == "failed"; });
+    result.reason = std::to_string(failed_plots) + " plot(s) failed (first: " + first.png + ", " + first.reason + ")";
+  }
+  result.exit_code = result.status == "ok" ? 0 : 3;
+
+  nlohmann::json& m = summary.metrics();
+  m["name"] = spec.name;
+  m["jobs"] = options.jobs;
+  m["runs_total"] = runs.size();
+  m["runs_ok"] = runs.size() - failed_runs;
+  m["runs_failed"] = failed_runs;
+  m["stages"] = nlohmann::json::object();
+  for (size_t i = 0; i < spec.steps.size(); ++i) m["stages"][spec.steps[i].stage] = exes[i].string();
+  m["runs"] = nlohmann::json::array();
+  for (size_t r = 0; r < runs.size(); ++r) {
+    const RunOutcome& o = result.runs[r];
+    nlohmann::json jr = {{"run_id", o.run_id},
+                         {"run_dir", runs[r].run_dir.string()},
+                         {"variables", nlohmann::json(o.variables)},
+                         {"status", o.ok ? "ok" : "failed"},
+                         {"wall_time_s", o.wall_time_s},
+                         {"exit_codes", nlohmann::json::object()},
+                         {"steps", nlohmann::json::array()}};
+    if (!o.reason.empty()) jr["reason"] = o.reason;
+    for (size_t s = 0; s < o.steps.size(); ++s) {
+      const StepOutcome& so = o.steps[s];
+      jr["exit_codes"][so.name] = so.exit_code >= 0 ? nlohmann::json(so.exit_code) : nlohmann::json(nullptr);
+      nlohmann::json js = {{"name", so.name},
+                           {"stage", runs[r].steps[s].stage},
+                           {"status", so.status},
+                           {"exit_code", jr["exit_codes"][so.name]},
+                           {"wall_time_s", so.wall_time_s},
+                           {"cpu_time_s", so.cpu_time_s},
+                           {"log", (runs[r].run_dir / (so.name + ".log")).string()}};
+      if (!so.error.empty()) js["error"] = so.error;
+      jr["steps"].push_back(js);
+    }
+    m["runs"].push_back(jr);
+  }
+  m["csv"] = nlohmann::json::array();
+  for (const auto& t : result.tables) {
+    nlohmann::json missing = nlohmann::json::array();
+    for (const auto& x : t.missing) missing.push_back({{"run_id", x.run_id}, {"reason", x.reason}});
+    m["csv"].push_back({{"file", t.path.string()}, {"rows", t.rows}, {"missing_summaries", missing}});
+  }
+  m["plots"] = {{"made", nlohmann::json::array()}, {"skipped", nlohmann::json::array()}, {"failed", nlohmann::json::array()}};
+  for (const auto& p : result.plots) {
+    if (p.status == "made") m["plots"]["made"].push_back((out / p.png).string());
+    else m["plots"][p.status].push_back({{"png", (out / p.png).string()}, {"reason", p.reason}});
+  }
+  summary.set_status(result.status, result.reason);
+  summary.write();
+  return result;
+}
+
+}  // namespace valve

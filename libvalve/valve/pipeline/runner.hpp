@@ -1,0 +1,73 @@
+#pragma once
+// Runs a validated pipeline: every run in its own folder DIR/runs/<run_id>/ (emptied first,
+// so a gather never picks up a stale summary from an earlier invocation), the steps of a
+// run in order with the run folder as working directory and their stdout+stderr in
+// <step>.log there, up to `jobs` runs at a time. A step whose exit code is not in its
+// allow_exit (or that cannot start, or is killed by a signal) fails the run and skips the
+// run's later steps; other runs go on. Then the gather tables and plots are written and
+// DIR/pipeline.summary.json (status ok only when every run and every attempted plot
+// succeeded; a plot skipped because gnuplot is absent is not a failure).
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "valve/pipeline/gather.hpp"
+#include "valve/pipeline/pipeline_spec.hpp"
+
+namespace valve {
+
+struct RunnerOptions {
+  std::filesystem::path out_dir;
+  int jobs = 1;
+  bool quiet = true;
+  /// Searched for stages before the default directories and PATH (see process.hpp).
+  std::vector<std::filesystem::path> stage_dirs;
+};
+
+struct StepOutcome {
+  std::string name;
+  std::string status = "skipped";  ///< "ok", "failed" or "skipped" (an earlier step failed)
+  int exit_code = -1;              ///< -1 when it did not run
+  double wall_time_s = 0, cpu_time_s = 0;
+  std::string error;               ///< could not start, or killed by a signal
+};
+
+struct RunOutcome {
+  std::string run_id;
+  ojson variables;
+  bool ok = false;
+  std::string reason;
+  std::vector<StepOutcome> steps;
+  double wall_time_s = 0;
+};
+
+/// The executable of each step's stage; an InputError naming steps[i].stage when one is
+/// not found, so that nothing runs.
+std::vector<std::filesystem::path> resolve_stages(const PipelineSpec& spec,
+                                                  const std::vector<std::filesystem::path>& dirs);
+
+/// Called after every finished step with the fraction of work done (finished runs plus the
+/// finished steps of running ones, over all runs) and a one-line description.
+using RunProgress = std::function<void(double fraction, const std::string& detail)>;
+
+/// Runs every run, at most `jobs` at a time, each a sequence of child processes. Results
+/// are in run order. `executables[i]` is the program of step i.
+std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs,
+                                     const std::vector<std::filesystem::path>& executables, int jobs,
+                                     const RunProgress& progress = {}, bool quiet = true);
+
+struct PipelineOutcome {
+  std::vector<RunOutcome> runs;
+  std::vector<GatherResult> tables;
+  std::vector<PlotResult> plots;
+  std::string status;  ///< "ok" or "failed"
+  std::string reason;
+  int exit_code = 0;   ///< 0 ok, 3 some run or plot failed
+};
+
+/// Resolves the stages (throws InputError before writing anything), then runs, gathers,
+/// plots and writes DIR/pipeline.summary.json.
+PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options);
+
+}  // namespace valve

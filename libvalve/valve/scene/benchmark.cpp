@@ -1,0 +1,95 @@
+#include "valve/scene/benchmark.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "valve/mechanics/mass_spring.hpp"
+#include "valve/mechanics/membrane_fe.hpp"
+#include "valve/scene/simulation.hpp"
+#include "valve/solver/constrained_system.hpp"
+#include "valve/solver/linear_solver.hpp"
+
+namespace valve {
+namespace {
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+}  // namespace
+
+TermCost measure_term_cost(const SceneConfig& sc, const TriMesh& mesh, ModelKind model, const VecX& x, int reps) {
+  std::unique_ptr<ForceTerm> term;
+  if (model == ModelKind::mass_spring)
+    term = std::make_unique<MassSpringTerm>(mesh, sc.material.bilinear(), sc.thickness);
+  else
+    term = std::make_unique<MembraneFETerm>(mesh, sc.material.law(), sc.thickness);
+  std::vector<std::pair<int, int>> pairs;
+  term->couplings(pairs);
+  BlockJacobian J(mesh.num_nodes(), pairs);
+  const VecX v = VecX::Zero(x.size());
+  VecX f(x.size());
+  const State s{x, v, 1.0, 0.0};
+  // Each sample repeats the evaluation enough times to last ~1 ms, beyond timer resolution.
+  const int inner = std::max(1, 200000 / std::max(1, mesh.num_triangles()));
+  std::vector<double> t_force, t_jac;
+  for (int r = 0; r < reps; ++r) {
+    auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < inner; ++k) {
+      f.setZero();
+      term->add(s, f, nullptr, nullptr);
+    }
+    t_force.push_back(seconds_since(t0) / inner);
+    t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < inner; ++k) {
+      f.setZero();
+      J.set_zero();
+      term->add(s, f, &J, nullptr);
+    }
+    t_jac.push_back(seconds_since(t0) / inner);
+  }
+  TermCost c;
+  c.term = term->name();
+  c.elements = mesh.num_triangles();
+  c.force_ns_per_element = 1e9 * median(t_force) / c.elements;
+  c.force_and_jacobian_ns_per_element = 1e9 * median(t_jac) / c.elements;
+  return c;
+}
+
+ClosureCost measure_closure(const SceneConfig& scene, const TriMesh& mesh, ModelKind model, int reps) {
+  SceneConfig sc = scene;
+  sc.model = model;
+  auto sys = build_system(sc, mesh);
+  ClosureCost out;
+  const auto t0 = std::chrono::steady_clock::now();
+  const SimulationResult res = simulate(sc, mesh, *sys);
+  out.solve_seconds = seconds_since(t0);
+  out.solver = res.summary.to_json();
+  out.x = res.x;
+  // One factorization of the same system: the static tangent at the solution, with the
+  // solver the run used.
+  VecX f;
+  const VecX v = VecX::Zero(res.x.size());
+  sys->evaluate(State{res.x, v, 1.0, 0.0}, f, true, false);
+  SparseMatrix A = -sys->dfdx().matrix();
+  for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += 1e-6 * std::max(1.0, std::abs(A.coeff(i, i)));
+  VecX b = f;
+  apply_constraints(A, b, sys->constrained());
+  const LinearSolverType type = res.summary.solver == "bdf2" ? sc.bdf2.linear_solver : sc.statics.linear_solver;
+  auto solver = make_linear_solver(type);
+  if (solver->needs_symmetric()) A = symmetric_part(A);
+  solver->factorize(A);  // symbolic analysis once, as in a run
+  std::vector<double> t;
+  for (int r = 0; r < reps; ++r) {
+    const auto t1 = std::chrono::steady_clock::now();
+    solver->factorize(A);
+    t.push_back(seconds_since(t1));
+  }
+  out.one_factorization_seconds = median(t);
+  out.ratio_to_factorization = out.one_factorization_seconds > 0 ? out.solve_seconds / out.one_factorization_seconds : 0;
+  return out;
+}
+
+}  // namespace valve

@@ -1,0 +1,83 @@
+// valve-bench --scene SCENE.json --out DIR [--mesh FILE] [--repetitions N] [--quiet]
+// Cost of the scene's closure with both models (seed Table 3.3 and the targets):
+// internal-force time per element per evaluation (forces only, and with the Jacobian), the
+// M-S/FE ratio, and for each model the closure's wall time, steps, factorizations and total
+// time over one factorization of the same system. Writes DIR/bench.json and DIR/bench.csv.
+// Timings are medians over repetitions within this process; quote them with their ratios.
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "valve/config/scene_config.hpp"
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/cli.hpp"
+#include "valve/core/error.hpp"
+#include "valve/io/mesh_io.hpp"
+#include "valve/mesh/validate.hpp"
+#include "valve/scene/benchmark.hpp"
+
+using namespace valve;
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) {
+  return run_stage("valve-bench", [&] {
+    CommandLine cl(argc, argv, {"scene", "out", "mesh", "repetitions", "set"}, {"quiet"});
+    const fs::path scene_file = cl.require("scene");
+    const fs::path out = cl.require("out");
+    json j = load_json_file(scene_file);
+    if (auto v = cl.get("mesh")) j["mesh"] = fs::absolute(*v).string();
+    for (const auto& a : cl.get_all("set")) apply_override(j, a, scene_file.string());
+    const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
+    const int reps = std::stoi(cl.get("repetitions").value_or("7"));
+    if (reps < 1 || reps > 1000) throw InputError("valve-bench: --repetitions: expected 1..1000, found " + std::to_string(reps));
+    const TriMesh mesh = read_mesh(scene.mesh_path);
+    validate_mesh(mesh, scene.mesh_path.string());
+
+    StageSummary summary("bench", out);
+    summary.add_input("scene", scene_file);
+    summary.add_input("mesh", scene.mesh_path);
+    summary.parameters() = scene.used;
+    nlohmann::json models = nlohmann::json::object();
+    std::ostringstream csv;
+    csv << "model,triangles,force_ns_per_element,force_and_jacobian_ns_per_element,solver,status,steps,factorizations,"
+           "solve_seconds,one_factorization_seconds,ratio_to_factorization\n";
+    std::map<std::string, ClosureCost> closures;
+    std::map<std::string, TermCost> terms;
+    for (ModelKind m : {ModelKind::mass_spring, ModelKind::membrane_fe}) {
+      const std::string name = to_string(m);
+      closures[name] = measure_closure(scene, mesh, m, reps);
+      // Term cost at the loaded state of this model (realistic strains for the exponential).
+      terms[name] = measure_term_cost(scene, mesh, m, closures[name].x, reps);
+      const auto& c = closures[name];
+      const auto& t = terms[name];
+      models[name] = {{"force_ns_per_element", t.force_ns_per_element},
+                      {"force_and_jacobian_ns_per_element", t.force_and_jacobian_ns_per_element},
+                      {"solve_seconds", c.solve_seconds},
+                      {"one_factorization_seconds", c.one_factorization_seconds},
+                      {"ratio_to_factorization", c.ratio_to_factorization},
+                      {"solver", c.solver}};
+      csv << name << "," << mesh.num_triangles() << "," << t.force_ns_per_element << ","
+          << t.force_and_jacobian_ns_per_element << "," << c.solver["solver"].get<std::string>() << ","
+          << c.solver["status"].get<std::string>() << "," << c.solver["steps"] << "," << c.solver["factorizations"] << ","
+          << c.solve_seconds << "," << c.one_factorization_seconds << "," << c.ratio_to_factorization << "\n";
+    }
+    const double force_ratio = terms["mass_spring"].force_ns_per_element / terms["membrane_fe"].force_ns_per_element;
+    const double jac_ratio = terms["mass_spring"].force_and_jacobian_ns_per_element /
+                             terms["membrane_fe"].force_and_jacobian_ns_per_element;
+    const double run_ratio = closures["membrane_fe"].solve_seconds / closures["mass_spring"].solve_seconds;
+    summary.metrics()["models"] = models;
+    summary.metrics()["ms_over_fe_force_time"] = force_ratio;
+    summary.metrics()["ms_over_fe_force_and_jacobian_time"] = jac_ratio;
+    summary.metrics()["fe_over_ms_closure_time"] = run_ratio;
+    summary.metrics()["seed"] = {{"ms_over_fe_force_time", 0.10}, {"fe_over_ms_closure_time", "20-30"}};
+    write_file_atomic(out / "bench.csv", csv.str());
+    write_file_atomic(out / "bench.json", summary.metrics().dump(2) + "\n");
+    summary.write();
+    if (!cl.has("quiet")) {
+      std::printf("%s", csv.str().c_str());
+      std::printf("M-S/FE internal-force time per element: %.3f (seed 0.10); with Jacobian: %.3f\n", force_ratio, jac_ratio);
+      std::printf("FE/M-S closure time: %.2f (seed 20-30)\n", run_ratio);
+    }
+    return 0;
+  });
+}

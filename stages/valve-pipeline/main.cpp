@@ -1,0 +1,114 @@
+// valve-pipeline run P.json --out DIR [--jobs N] [--stage-dir D ...] [--quiet]
+// valve-pipeline list P.json [--out DIR] [--stage-dir D ...]
+// `run` runs a pipeline JSON (format in libvalve/valve/pipeline/pipeline_spec.hpp): every run
+// in DIR/runs/<run_id>/ with one <step>.log per step, up to N runs at a time, then writes
+// the gather CSVs and gnuplot plots into DIR and DIR/pipeline.summary.json.
+// `list` validates the pipeline and prints each run's id and commands without running them.
+// Exit 0 ok, 2 bad pipeline (one line naming file and key, nothing written), 3 some run or
+// plot failed (the summary says which; the tables still hold what the other runs made).
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "valve/core/cli.hpp"
+#include "valve/core/error.hpp"
+#include "valve/pipeline/pipeline_spec.hpp"
+#include "valve/pipeline/process.hpp"
+#include "valve/pipeline/runner.hpp"
+
+using namespace valve;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* usage =
+    "usage: valve-pipeline run P.json --out DIR [--jobs N] [--stage-dir D ...] [--quiet]\n"
+    "       valve-pipeline list P.json [--out DIR] [--stage-dir D ...]\n";
+
+int parse_jobs(const CommandLine& cl) {
+  const auto v = cl.get("jobs");
+  if (!v) return 1;
+  char* end = nullptr;
+  const long n = std::strtol(v->c_str(), &end, 10);
+  if (end == v->c_str() || *end != '\0' || n < 1 || n > 1024)
+    throw InputError("valve-pipeline: --jobs: expected an integer in [1, 1024], found \"" + *v + "\"");
+  return static_cast<int>(n);
+}
+
+std::vector<fs::path> stage_dirs(const CommandLine& cl) {
+  std::vector<fs::path> dirs;
+  for (const auto& d : cl.get_all("stage-dir")) dirs.push_back(fs::absolute(d));
+  return default_stage_dirs(dirs);
+}
+
+// Without --out the dry run shows paths under a stand-in folder, printed as $OUT.
+int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
+  const auto exes = resolve_stages(spec, stage_dirs(cl));
+  const std::string marker = "/__valve_pipeline_out__";
+  const fs::path out = cl.get("out") ? fs::path(*cl.get("out")) : fs::path(marker);
+  const auto runs = expand_runs(spec, out);
+  auto show = [&](std::string text) {
+    if (cl.get("out")) return text;
+    for (size_t at; (at = text.find(marker)) != std::string::npos;) text.replace(at, marker.size(), "$OUT");
+    return text;
+  };
+  std::string vars;
+  for (const auto& v : spec.variables)
+    vars += (vars.empty() ? "" : spec.sweep == SweepKind::grid ? " x " : ", ") + v.name + " (" +
+            std::to_string(v.values.size()) + ")";
+  std::printf("pipeline %s (%s): %zu run(s)%s, %zu step(s) each\n", spec.name.c_str(), spec.file.c_str(), runs.size(),
+              vars.empty() ? "" : ((spec.sweep == SweepKind::grid ? ", grid over " : ", zip of ") + vars).c_str(),
+              spec.steps.size());
+  if (!cl.get("out")) std::printf("# OUT stands for the --out folder\n");
+  for (const auto& run : runs) {
+    std::printf("run %s\n", run.run_id.c_str());
+    for (size_t s = 0; s < run.steps.size(); ++s) {
+      std::vector<std::string> words{exes[s].string()};
+      words.insert(words.end(), run.steps[s].args.begin(), run.steps[s].args.end());
+      std::printf("  [%s] %s\n", run.steps[s].name.c_str(), show(shell_quote(words)).c_str());
+    }
+  }
+  for (const auto& g : spec.gather)
+    std::printf("gather %s from runs/*/%s\n", show((normalized_dir(out) / g.csv).string()).c_str(), g.summary.c_str());
+  for (const auto& p : spec.plots)
+    std::printf("plot %s from %s\n", show((normalized_dir(out) / p.png).string()).c_str(), p.csv.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_stage("valve-pipeline", [&] {
+    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir"}, {"quiet", "help"});
+    if (cl.has("help")) {
+      std::printf("%s", usage);
+      return 0;
+    }
+    const auto& pos = cl.positional();
+    if (pos.size() != 2 || (pos[0] != "run" && pos[0] != "list"))
+      throw InputError("valve-pipeline: command: expected \"run P.json\" or \"list P.json\", found " +
+                       std::to_string(pos.size()) + " positional argument(s)" +
+                       (pos.empty() ? "" : " starting with \"" + pos[0] + "\""));
+    RunnerOptions options;
+    if (pos[0] == "run") options.out_dir = cl.require("out");
+    options.jobs = parse_jobs(cl);
+    const PipelineSpec spec = load_pipeline(pos[1]);
+    if (pos[0] == "list") return list_runs(spec, cl);
+
+    options.quiet = cl.has("quiet");
+    for (const auto& d : cl.get_all("stage-dir")) options.stage_dirs.push_back(fs::absolute(d));
+    const PipelineOutcome result = run_pipeline(spec, options);
+
+    if (!options.quiet) {
+      size_t ok = 0;
+      for (const auto& r : result.runs) ok += r.ok ? 1 : 0;
+      std::string made;
+      for (const auto& t : result.tables)
+        made += "; wrote " + t.path.filename().string() + " (" + std::to_string(t.rows) + " rows)";
+      for (const auto& p : result.plots) made += "; plot " + p.png + " " + p.status;
+      std::printf("valve-pipeline: %zu/%zu runs ok%s\n", ok, result.runs.size(), made.c_str());
+    }
+    if (result.exit_code != 0) std::fprintf(stderr, "valve-pipeline: failed: %s\n", result.reason.c_str());
+    return result.exit_code;
+  });
+}

@@ -1,0 +1,181 @@
+#include "valve/pipeline/runner.hpp"
+
+#include <catch2/catch.hpp>
+
+#include "pipeline_test_support.hpp"
+#include "valve/core/error.hpp"
+#include "valve/pipeline/process.hpp"
+
+using namespace valve;
+using valve::test::read_text;
+using valve::test::TempDir;
+using valve::test::write_script;
+using valve::test::write_text;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Fake stages: small sh scripts in a folder given to the runner with stage_dirs.
+void write_fake_stages(const fs::path& dir) {
+  // valve-exit CODE: prints to both streams, exits with CODE.
+  write_script(dir / "valve-exit", "echo \"to stdout $1\"; echo \"to stderr $1\" >&2; exit \"$1\"");
+  // valve-report VALUE: writes a summary in the working directory (the run folder).
+  write_script(dir / "valve-report",
+               "printf '{\"status\": \"ok\", \"value\": %s, \"args\": \"%s\"}\\n' \"$1\" \"$*\" > report.summary.json");
+  // valve-crowd SHARED: marks itself running, waits, counts how many runs ever started.
+  write_script(dir / "valve-crowd", "touch \"$1/$$\"; sleep 0.5; ls \"$1\" | wc -l > crowd.txt");
+  write_script(dir / "valve-suicide", "kill -9 $$");
+  write_text(dir / "valve-broken", "#!/nonexistent/interpreter\n");
+  fs::permissions(dir / "valve-broken", fs::perms::owner_all);
+}
+
+PipelineSpec write_and_load(const fs::path& dir, const std::string& text) {
+  write_text(dir / "P.json", text);
+  return load_pipeline(dir / "P.json");
+}
+
+}  // namespace
+
+TEST_CASE("runner: allow_exit, failed runs skip later steps, logs, summary and gather", "[pipeline]") {
+  TempDir tmp("runner");
+  write_fake_stages(tmp.path() / "bin");
+  const auto spec = write_and_load(tmp.path(), R"({
+    "variables": {"code": [0, 3, 5]},
+    "steps": [
+      {"name": "first", "stage": "valve-exit", "args": ["${code}"], "allow_exit": [0, 3]},
+      {"name": "second", "stage": "valve-report", "args": ["${code}", "${run_id}"]}
+    ],
+    "gather": [{"csv": "values.csv", "summary": "report.summary.json",
+                "columns": {"code": "${code}", "value": "summary:value", "status": "summary:status"}}]
+  })");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  const PipelineOutcome result = run_pipeline(spec, options);
+
+  CHECK(result.exit_code == 3);
+  CHECK(result.status == "failed");
+  CHECK_THAT(result.reason, Catch::Contains("1 of 3 runs failed (first: code-5, step first exited with 5"));
+  REQUIRE(result.runs.size() == 3);
+  CHECK(result.runs[0].ok);
+  CHECK(result.runs[1].ok);  // 3 is allowed
+  CHECK(result.runs[1].steps[0].exit_code == 3);
+  CHECK_FALSE(result.runs[2].ok);
+  CHECK(result.runs[2].steps[0].status == "failed");
+  CHECK(result.runs[2].steps[1].status == "skipped");
+  CHECK(result.runs[2].steps[1].exit_code == -1);
+  const fs::path out = tmp.path() / "out";
+  CHECK_FALSE(fs::exists(out / "runs/code-5/second.log"));
+  CHECK_FALSE(fs::exists(out / "runs/code-5/report.summary.json"));
+
+  // Both streams land in the step log, after the command line.
+  const std::string log = read_text(out / "runs/code-3/first.log");
+  CHECK(log.rfind("# cd ", 0) == 0);
+  CHECK_THAT(log, Catch::Contains("valve-exit 3\n"));
+  CHECK_THAT(log, Catch::Contains("to stdout 3"));
+  CHECK_THAT(log, Catch::Contains("to stderr 3"));
+
+  CHECK(read_text(out / "values.csv") == "code,value,status\n0,0,ok\n3,3,ok\n5,,\n");
+
+  const ojson summary = ojson::parse(read_text(out / "pipeline.summary.json"));
+  CHECK(summary["stage"] == "pipeline");
+  CHECK(summary["status"] == "failed");
+  CHECK(summary["inputs"][0]["sha256"].get<std::string>().size() == 64);
+  CHECK(summary["parameters"]["variables"]["code"].size() == 3);
+  CHECK(summary["metrics"]["runs_failed"] == 1);
+  CHECK(summary["metrics"]["runs"][2]["exit_codes"]["first"] == 5);
+  CHECK(summary["metrics"]["runs"][2]["exit_codes"]["second"].is_null());
+  CHECK(summary["metrics"]["runs"][1]["variables"]["code"] == 3);
+  CHECK(summary["metrics"]["csv"][0]["rows"] == 3);
+  CHECK(summary.contains("wall_time_s"));
+}
+
+TEST_CASE("runner: stage names cannot carry placeholders, broken and killed stages", "[pipeline]") {
+  TempDir tmp("killed");
+  write_fake_stages(tmp.path() / "bin");
+  CHECK_THROWS_WITH(write_and_load(tmp.path(), R"({"variables": {"w": ["a"]}, "steps": [{"stage": "valve-${w}", "args": []}]})"),
+                    Catch::Contains("steps[0].stage: expected a stage name valve-<name>"));
+  const auto spec = write_and_load(tmp.path(), R"({
+    "steps": [{"name": "a", "stage": "valve-broken", "args": []}]})");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  const auto broken = run_pipeline(spec, options);
+  CHECK(broken.exit_code == 3);
+  CHECK(broken.runs[0].steps[0].exit_code == 127);
+  CHECK_THAT(broken.runs[0].steps[0].error, Catch::Contains("cannot start"));
+  CHECK_THAT(read_text(tmp.path() / "out/runs/single/a.log"), Catch::Contains("cannot start"));
+
+  const auto killed_spec = write_and_load(tmp.path(), R"({
+    "steps": [{"name": "k", "stage": "valve-suicide", "args": [], "allow_exit": [0, 137]}]})");
+  const auto killed = run_pipeline(killed_spec, options);
+  CHECK(killed.exit_code == 3);  // a signal is never an allowed exit
+  CHECK(killed.runs[0].steps[0].exit_code == 137);
+  CHECK_THAT(killed.runs[0].reason, Catch::Contains("killed by signal 9"));
+}
+
+TEST_CASE("runner: a missing stage is rejected before anything is written", "[pipeline]") {
+  TempDir tmp("missing");
+  const auto spec = write_and_load(tmp.path(), R"({"steps": [
+    {"stage": "valve-exit", "args": ["0"]}, {"stage": "valve-no-such-stage-here", "args": []}]})");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  write_fake_stages(tmp.path() / "bin");
+  CHECK_THROWS_AS(run_pipeline(spec, options), InputError);
+  CHECK_THROWS_WITH(run_pipeline(spec, options),
+                    Catch::StartsWith((tmp.path() / "P.json").string() + ": steps[1].stage: expected an executable valve-no-such-stage-here"));
+  CHECK_FALSE(fs::exists(options.out_dir));
+}
+
+TEST_CASE("runner: --jobs runs several runs at once, one job runs them one by one", "[pipeline]") {
+  TempDir tmp("jobs");
+  write_fake_stages(tmp.path() / "bin");
+  for (int jobs : {1, 2}) {
+    const fs::path shared = tmp.path() / ("shared" + std::to_string(jobs));
+    fs::create_directories(shared);
+    const auto spec = write_and_load(tmp.path(), R"({"variables": {"k": [1, 2]},
+      "steps": [{"stage": "valve-crowd", "args": [")" + shared.string() + R"("]}]})");
+    RunnerOptions options;
+    options.out_dir = tmp.path() / ("out" + std::to_string(jobs));
+    options.stage_dirs = {tmp.path() / "bin"};
+    options.jobs = jobs;
+    const auto result = run_pipeline(spec, options);
+    REQUIRE(result.exit_code == 0);
+    // The first run counts the runs started before it finished: 1 alone, 2 in parallel.
+    const std::string crowd = read_text(options.out_dir / "runs/k-1/crowd.txt");
+    CHECK(std::stoi(crowd) == jobs);
+  }
+}
+
+TEST_CASE("runner: each run starts from an empty folder", "[pipeline]") {
+  TempDir tmp("stale");
+  write_fake_stages(tmp.path() / "bin");
+  const auto spec = write_and_load(tmp.path(), R"({"steps": [{"stage": "valve-exit", "args": ["0"]}],
+    "gather": [{"csv": "t.csv", "summary": "report.summary.json", "columns": {"v": "summary:value"}}]})");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  // A summary left by an earlier invocation must not be gathered as if this run made it.
+  write_text(options.out_dir / "runs/single/report.summary.json", R"({"value": 99})");
+  write_text(options.out_dir / "unrelated.txt", "kept");
+  const auto result = run_pipeline(spec, options);
+  CHECK(result.exit_code == 0);
+  CHECK(read_text(options.out_dir / "t.csv") == "v\n\n");
+  CHECK(fs::exists(options.out_dir / "unrelated.txt"));
+}
+
+TEST_CASE("process: stage lookup order and shell quoting", "[pipeline]") {
+  TempDir tmp("lookup");
+  write_fake_stages(tmp.path() / "a");
+  write_fake_stages(tmp.path() / "b");
+  write_text(tmp.path() / "c/valve-exit", "not executable");
+  CHECK(find_stage("valve-exit", {tmp.path() / "c", tmp.path() / "b", tmp.path() / "a"}) == tmp.path() / "b/valve-exit");
+  CHECK_FALSE(find_stage("valve-exit", {tmp.path() / "c"}).has_value());
+  CHECK(find_on_path("sh").has_value());
+  CHECK(shell_quote({"a", "b c", "it's", "x=1,2", ""}) == "a 'b c' 'it'\\''s' x=1,2 ''");
+  const auto dirs = default_stage_dirs({tmp.path()});
+  REQUIRE(dirs.size() >= 2);
+  CHECK(dirs[0] == tmp.path());
+  CHECK(dirs[1] == self_executable_dir());
+}
