@@ -1,5 +1,7 @@
 // valve-generate KIND --out DIR [--triangles N] [--seed S] [--count K] [--fiber-angle DEG]
 //                [--side MM] [--diameter MM] [--circumference MM] [--name NAME] [--quiet]
+//                [--jitter F]   (stability tests: move interior nodes by up to F spacings -> slivers)
+//                [--relax-iterations N]   (triangulate+equalize rounds, default 60; 0 = raw random points)
 // Writes analytic meshes (seed 3.2.2.1, Fig. 3.1) as .vtp with FiberDirection, NodeRole,
 // BoundaryType and Leaflet arrays, plus generate.summary.json with their quality.
 // KIND: square_patch | aortic_leaflet | three_leaflet_valve. --count K writes K meshes with
@@ -34,7 +36,7 @@ double parse_number(const CommandLine& cl, const std::string& flag, double fallb
 int main(int argc, char** argv) {
   return run_stage("valve-generate", [&] {
     CommandLine cl(argc, argv,
-                   {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name"},
+                   {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name", "jitter", "relax-iterations"},
                    {"quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-generate: KIND: expected one of square_patch|aortic_leaflet|three_leaflet_valve, found " +
@@ -58,6 +60,8 @@ int main(int argc, char** argv) {
     for (int k = 0; k < count; ++k) {
       TriMesh mesh;
       PlanarMeshOptions mo{triangles / (kind == "three_leaflet_valve" ? 3 : 1), seed + k};
+      mo.jitter = parse_number(cl, "jitter", 0.0, 0.0, 100.0);
+      mo.max_iterations = static_cast<int>(parse_number(cl, "relax-iterations", mo.max_iterations, 0, 100000));
       if (kind == "square_patch") {
         SquarePatchOptions o;
         o.side = parse_number(cl, "side", 15.0, 1e-6, 1e6);

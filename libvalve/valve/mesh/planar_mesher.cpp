@@ -47,7 +47,40 @@ std::vector<Tri> triangulate(const std::vector<Vec2>& pts, int num_boundary,
 // quality over 229-20,000 triangles (mean 0.98-0.99; tests/mesh/generators_test.cpp).
 constexpr double kRestFactor = 1.1;
 
+double signed_area(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const Vec2 u = b - a, v = c - a;
+  return 0.5 * (u.x() * v.y() - u.y() * v.x());
+}
+
 }  // namespace
+
+void jitter_interior(PlanarMesh& m, double amplitude, SplitMix64& rng) {
+  std::vector<std::vector<int>> incident(m.points.size());
+  for (int t = 0; t < static_cast<int>(m.triangles.size()); ++t)
+    for (int k = 0; k < 3; ++k) incident[m.triangles[t][k]].push_back(t);
+  // Each interior node slides towards the far edge of one of its triangles, by a random
+  // fraction of the way scaled by `amplitude` (in spacings, capped at 0.995 of the way):
+  // triangles flatten into slivers but never flip.
+  const double min_area = 1e-8 * amplitude * amplitude;
+  for (int pass = 0; pass < 8; ++pass)
+    for (int i = m.num_boundary; i < static_cast<int>(m.points.size()); ++i) {
+      if (incident[i].empty()) continue;
+      const Tri& pick = m.triangles[incident[i][static_cast<size_t>(rng.uniform() * incident[i].size()) % incident[i].size()]];
+      int a = -1, b = -1;
+      for (int k = 0; k < 3; ++k)
+        if (pick[k] != i) (a < 0 ? a : b) = pick[k];
+      const Vec2 old = m.points[i], target = 0.5 * (m.points[a] + m.points[b]);
+      const double f = std::min(0.995, amplitude * rng.uniform() / std::max((target - old).norm(), 1e-300));
+      m.points[i] = old + f * (target - old);
+      for (int t : incident[i]) {
+        const Tri& tri = m.triangles[t];
+        if (signed_area(m.points[tri[0]], m.points[tri[1]], m.points[tri[2]]) < min_area) {
+          m.points[i] = old;
+          break;
+        }
+      }
+    }
+}
 
 double SplitMix64::uniform() {
   std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
@@ -126,6 +159,7 @@ PlanarMesh mesh_planar_domain(const PlanarDomain& domain, const PlanarMeshOption
   }
   out.iterations = std::min(out.iterations, opt.max_iterations);
   out.triangles = triangulate(out.points, out.num_boundary, domain);
+  if (opt.jitter > 0) jitter_interior(out, opt.jitter * s, rng);
   return out;
 }
 

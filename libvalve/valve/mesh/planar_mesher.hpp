@@ -28,6 +28,10 @@ struct PlanarMeshOptions {
   std::uint64_t seed = 1;
   int max_iterations = 60;       // triangulate + relax rounds
   double move_tolerance = 2e-3;  // stop when the largest move is below this fraction of the spacing
+  /// Deliberate degradation for stability tests: after meshing, interior nodes are moved at
+  /// random by up to `jitter` spacings (moves that would flip or flatten a triangle are
+  /// refused), producing slivers. 0 = off.
+  double jitter = 0;
 };
 
 struct PlanarMesh {
@@ -48,5 +52,8 @@ class SplitMix64 {
  private:
   std::uint64_t state_;
 };
+
+/// Moves interior nodes at random by up to `amplitude` (see PlanarMeshOptions::jitter).
+void jitter_interior(PlanarMesh& mesh, double amplitude, SplitMix64& rng);
 
 }  // namespace valve

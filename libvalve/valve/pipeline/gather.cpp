@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <regex>
@@ -112,6 +113,39 @@ GatherResult write_gather(const PipelineSpec& spec, const GatherSpec& gather, co
   result.path = out_dir / gather.csv;
   result.rows = table.rows.size();
   write_file_atomic(result.path, to_csv(table));
+  return result;
+}
+
+CsvTable gather_csv_table(const PipelineSpec& spec, const std::string& csv, const std::vector<RunPlan>& runs,
+                          const fs::path& out_dir, std::vector<MissingSummary>* missing) {
+  CsvTable table;
+  bool first = true;
+  for (const auto& g : spec.gather) {
+    if (g.csv != csv) continue;
+    std::vector<MissingSummary> gaps;
+    CsvTable part = gather_table(spec, g, runs, out_dir, &gaps);
+    // Entries sharing a csv often read the same summary: report each missing file once.
+    for (const auto& gap : gaps)
+      if (missing && std::none_of(missing->begin(), missing->end(), [&](const MissingSummary& m) {
+            return m.run_id == gap.run_id && m.reason == gap.reason;
+          }))
+        missing->push_back(gap);
+    if (first) table.header = part.header;
+    first = false;
+    for (auto& row : part.rows) table.rows.push_back(std::move(row));
+  }
+  if (first) throw Error(spec.file + ": no gather entry writes " + csv);
+  return table;
+}
+
+GatherResult write_gather_csv(const PipelineSpec& spec, const std::string& csv, const std::vector<RunPlan>& runs,
+                              const fs::path& out_dir, CsvTable* table) {
+  GatherResult result;
+  const CsvTable t = gather_csv_table(spec, csv, runs, out_dir, &result.missing);
+  result.path = out_dir / csv;
+  result.rows = t.rows.size();
+  write_file_atomic(result.path, to_csv(t));
+  if (table) *table = t;
   return result;
 }
 

@@ -2,7 +2,8 @@
 // Gathering run results into CSV tables and plotting them with gnuplot.
 //
 // A gather table has one row per run (in run order), or, with "rows", one row per element
-// of that array in the run's summary. Missing data never drops a run silently: a run whose
+// of that array in the run's summary. A CSV named by several gather entries holds their
+// tables one after the other, in entry order, under their common header. Missing data never drops a run silently: a run whose
 // summary is missing or unreadable, or has no "rows" array, still gets one row, with empty
 // cells where values are missing (an empty "rows" array gives no row: it is data, not a gap).
 // Cells: strings as they are, integers exactly, other numbers with %.10g, non-finite
@@ -47,9 +48,19 @@ struct GatherResult {
   std::vector<MissingSummary> missing;
 };
 
-/// gather_table, written atomically to DIR/<csv>.
+/// gather_table of one entry alone, written atomically to DIR/<csv>.
 GatherResult write_gather(const PipelineSpec& spec, const GatherSpec& gather, const std::vector<RunPlan>& runs,
                           const std::filesystem::path& out_dir);
+
+/// The table of the CSV `csv`: the gather_table of every entry naming it, concatenated in
+/// entry order (parse_pipeline has checked that they share one header).
+CsvTable gather_csv_table(const PipelineSpec& spec, const std::string& csv, const std::vector<RunPlan>& runs,
+                          const std::filesystem::path& out_dir, std::vector<MissingSummary>* missing = nullptr);
+
+/// gather_csv_table, written atomically to DIR/<csv>; the table is also stored in `*table`
+/// when given, for the aggregates that read it. What the runner writes, once per CSV.
+GatherResult write_gather_csv(const PipelineSpec& spec, const std::string& csv, const std::vector<RunPlan>& runs,
+                              const std::filesystem::path& out_dir, CsvTable* table = nullptr);
 
 struct PlotResult {
   std::string png;

@@ -300,17 +300,137 @@ GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariabl
   return spec;
 }
 
-PlotSpec parse_plot(const ojson& p, size_t i, const std::vector<GatherSpec>& gather, const std::string& file) {
+std::vector<std::string> headers(const std::vector<ColumnSpec>& columns) {
+  std::vector<std::string> out;
+  for (const auto& c : columns) out.push_back(c.header);
+  return out;
+}
+
+/// A non-empty list of strings at obj[k], e.g. group_by (which may be empty when allow_empty).
+std::vector<std::string> string_list(const ojson& obj, const std::string& k, bool allow_empty, const std::string& file,
+                                     const std::string& path) {
+  const std::string key = child_key(path, k);
+  const std::string what = allow_empty ? "a list of column names" : "a non-empty list of column names";
+  if (!obj.contains(k)) fail(file, key, what, "nothing (the key is required)");
+  const ojson& v = obj.at(k);
+  if (!v.is_array() || (!allow_empty && v.empty())) fail(file, key, what, describe(v));
+  std::vector<std::string> out;
+  for (size_t i = 0; i < v.size(); ++i) {
+    if (!v[i].is_string() || v[i].get<std::string>().empty())
+      fail(file, key + "[" + std::to_string(i) + "]", "a non-empty string", describe(v[i]));
+    out.push_back(v[i].get<std::string>());
+  }
+  return out;
+}
+
+/// The header of every table an aggregate may read: the gather CSVs, then the aggregates
+/// parsed so far, in order.
+using KnownTables = std::vector<std::pair<std::string, std::vector<std::string>>>;
+
+AggregateSpec parse_aggregate(const ojson& a, size_t i, const KnownTables& tables, const PipelineSpec& spec,
+                              const std::string& file) {
+  AggregateSpec agg;
+  agg.key = "aggregate[" + std::to_string(i) + "]";
+  if (!a.is_object()) fail(file, agg.key, "an object with csv, from, group_by and stats", describe(a));
+  check_keys(a, {"csv", "from", "where", "group_by", "stats"}, file, agg.key);
+  agg.csv = inside_path(a, "csv", file, agg.key);
+  for (const auto& g : spec.gather)
+    if (g.csv == agg.csv)
+      fail(file, agg.key + ".csv", "a file name not used by a gather table or an earlier aggregate",
+           "\"" + agg.csv + "\" (also " + g.key + ")");
+  for (const auto& other : spec.aggregates)
+    if (other.csv == agg.csv)
+      fail(file, agg.key + ".csv", "a file name not used by a gather table or an earlier aggregate",
+           "\"" + agg.csv + "\" (also " + other.key + ")");
+
+  agg.from = inside_path(a, "from", file, agg.key);
+  const auto table = std::find_if(tables.begin(), tables.end(), [&](const auto& t) { return t.first == agg.from; });
+  if (table == tables.end()) {
+    std::vector<std::string> names;
+    for (const auto& t : tables) names.push_back(t.first);
+    fail(file, agg.key + ".from",
+         "a gather table or an earlier aggregate table (" + (names.empty() ? std::string("none") : join(names, ", ")) + ")",
+         "\"" + agg.from + "\"");
+  }
+  const std::vector<std::string>& columns = table->second;
+  // Checked here, not when the table is read: a misspelt column would otherwise give an
+  // empty statistic after the whole sweep has run.
+  auto check_column = [&](const std::string& name, const std::string& key) {
+    if (std::find(columns.begin(), columns.end(), name) == columns.end())
+      fail(file, key, "a column of " + agg.from + " (" + join(columns, ", ") + ")", "\"" + name + "\"");
+  };
+
+  if (a.contains("where")) {
+    const ojson& w = a["where"];
+    const std::string wkey = agg.key + ".where";
+    if (!w.is_object()) fail(file, wkey, "an object of column: list of values", describe(w));
+    for (auto it = w.begin(); it != w.end(); ++it) {
+      const std::string key = wkey + "." + it.key();
+      check_column(it.key(), key);
+      const ojson& values = it.value();
+      if (!values.is_array() || values.empty()) fail(file, key, "a non-empty list of values", describe(values));
+      AggregateFilter filter{it.key(), {}};
+      for (size_t k = 0; k < values.size(); ++k) {
+        const ojson& e = values[k];
+        if (e.is_number_float() && !std::isfinite(e.get<double>()))
+          fail(file, key + "[" + std::to_string(k) + "]", "a finite number", describe(e));
+        if (!(e.is_string() || e.is_number() || e.is_boolean()))
+          fail(file, key + "[" + std::to_string(k) + "]", "a string, number or boolean", describe(e));
+        filter.values.push_back(value_text(e));  // 45.0 -> "45", as the cell text is written
+      }
+      agg.where.push_back(filter);
+    }
+  }
+
+  agg.group_by = string_list(a, "group_by", /*allow_empty=*/true, file, agg.key);
+  for (size_t k = 0; k < agg.group_by.size(); ++k) {
+    const std::string key = agg.key + ".group_by[" + std::to_string(k) + "]";
+    check_column(agg.group_by[k], key);
+    if (std::find(agg.group_by.begin(), agg.group_by.begin() + static_cast<long>(k), agg.group_by[k]) !=
+        agg.group_by.begin() + static_cast<long>(k))
+      fail(file, key, "a column not grouped by before", "\"" + agg.group_by[k] + "\"");
+  }
+  agg.header = agg.group_by;
+
+  const std::string skey = agg.key + ".stats";
+  if (!a.contains("stats")) fail(file, skey, "an object of column: list of stats", "nothing (the key is required)");
+  const ojson& stats = a["stats"];
+  if (!stats.is_object() || stats.empty()) fail(file, skey, "a non-empty object of column: list of stats", describe(stats));
+  const auto& names = aggregate_stat_names();
+  for (auto it = stats.begin(); it != stats.end(); ++it) {
+    const std::string key = skey + "." + it.key();
+    check_column(it.key(), key);
+    const ojson& list = it.value();
+    if (!list.is_array() || list.empty())
+      fail(file, key, "a non-empty list of stats (" + join(names, ", ") + ")", describe(list));
+    AggregateStats col{it.key(), {}};
+    for (size_t k = 0; k < list.size(); ++k) {
+      const std::string ekey = key + "[" + std::to_string(k) + "]";
+      if (!list[k].is_string() || std::find(names.begin(), names.end(), list[k].get<std::string>()) == names.end())
+        fail(file, ekey, "a stat (" + join(names, ", ") + ")", list[k].is_string() ? "\"" + list[k].get<std::string>() + "\"" : describe(list[k]));
+      const std::string header = it.key() + "_" + list[k].get<std::string>();
+      if (std::find(agg.header.begin(), agg.header.end(), header) != agg.header.end())
+        fail(file, ekey, "an output column name not used before in " + agg.key, "\"" + header + "\"");
+      col.stats.push_back(list[k].get<std::string>());
+      agg.header.push_back(header);
+    }
+    agg.stats.push_back(col);
+  }
+  return agg;
+}
+
+PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const std::string& file) {
   PlotSpec plot;
   plot.key = "plots[" + std::to_string(i) + "]";
   if (!p.is_object()) fail(file, plot.key, "an object with png, csv and gnuplot", describe(p));
   check_keys(p, {"png", "csv", "gnuplot"}, file, plot.key);
   plot.png = inside_path(p, "png", file, plot.key);
   plot.csv = inside_path(p, "csv", file, plot.key);
-  std::vector<std::string> tables;
-  for (const auto& g : gather) tables.push_back(g.csv);
+  std::vector<std::string> tables = gather_csvs(spec);
+  for (const auto& a : spec.aggregates) tables.push_back(a.csv);
   if (std::find(tables.begin(), tables.end(), plot.csv) == tables.end())
-    fail(file, plot.key + ".csv", "one of the gather tables (" + join(tables, ", ") + ")", "\"" + plot.csv + "\"");
+    fail(file, plot.key + ".csv", "one of the gather or aggregate tables (" + join(tables, ", ") + ")",
+         "\"" + plot.csv + "\"");
   const std::string gkey = plot.key + ".gnuplot";
   if (!p.contains("gnuplot")) fail(file, gkey, "a gnuplot script", "nothing (the key is required)");
   const ojson& text = p["gnuplot"];
@@ -356,7 +476,7 @@ ojson load_pipeline_json(const fs::path& path) {
 
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir) {
   if (!doc.is_object()) fail(file, "(top level)", "an object", describe(doc));
-  check_keys(doc, {"name", "description", "variables", "sweep", "steps", "gather", "plots"}, file, "");
+  check_keys(doc, {"name", "description", "variables", "sweep", "steps", "gather", "aggregate", "plots"}, file, "");
   PipelineSpec spec;
   spec.file = file;
   spec.pipeline_dir = normalized_dir(pipeline_dir);
@@ -408,17 +528,33 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
     if (!g.is_array()) fail(file, "gather", "a list of tables", describe(g));
     for (size_t i = 0; i < g.size(); ++i) {
       spec.gather.push_back(parse_gather(g[i], i, spec.variables, file));
-      for (size_t j = 0; j + 1 < spec.gather.size(); ++j)
-        if (spec.gather[j].csv == spec.gather.back().csv)
-          fail(file, spec.gather.back().key + ".csv", "a file name not used before",
-               "\"" + spec.gather.back().csv + "\" (also " + spec.gather[j].key + ")");
+      // Entries sharing a csv are concatenated under one header, so it must fit them all.
+      const GatherSpec& added = spec.gather.back();
+      const auto first = std::find_if(spec.gather.begin(), spec.gather.end(),
+                                      [&](const GatherSpec& e) { return e.csv == added.csv; });
+      if (&*first != &added && headers(first->columns) != headers(added.columns))
+        fail(file, added.key + ".columns", "the same columns as " + first->key + " (same csv)",
+             join(headers(added.columns), ", ") + " (" + first->key + ": " + join(headers(first->columns), ", ") + ")");
+    }
+  }
+  if (doc.contains("aggregate")) {
+    const ojson& a = doc["aggregate"];
+    if (!a.is_array()) fail(file, "aggregate", "a list of aggregate tables", describe(a));
+    KnownTables tables;
+    for (const auto& csv : gather_csvs(spec)) {
+      const auto g = std::find_if(spec.gather.begin(), spec.gather.end(), [&](const GatherSpec& e) { return e.csv == csv; });
+      tables.emplace_back(csv, headers(g->columns));
+    }
+    for (size_t i = 0; i < a.size(); ++i) {
+      spec.aggregates.push_back(parse_aggregate(a[i], i, tables, spec, file));
+      tables.emplace_back(spec.aggregates.back().csv, spec.aggregates.back().header);
     }
   }
   if (doc.contains("plots")) {
     const ojson& p = doc["plots"];
     if (!p.is_array()) fail(file, "plots", "a list of plots", describe(p));
     for (size_t i = 0; i < p.size(); ++i) {
-      spec.plots.push_back(parse_plot(p[i], i, spec.gather, file));
+      spec.plots.push_back(parse_plot(p[i], i, spec, file));
       for (size_t j = 0; j + 1 < spec.plots.size(); ++j)
         if (spec.plots[j].png == spec.plots.back().png)
           fail(file, spec.plots.back().key + ".png", "a file name not used before",
@@ -430,6 +566,18 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
 
 PipelineSpec load_pipeline(const fs::path& path) {
   return parse_pipeline(load_pipeline_json(path), path.string(), fs::absolute(path).parent_path());
+}
+
+std::vector<std::string> gather_csvs(const PipelineSpec& spec) {
+  std::vector<std::string> out;
+  for (const auto& g : spec.gather)
+    if (std::find(out.begin(), out.end(), g.csv) == out.end()) out.push_back(g.csv);
+  return out;
+}
+
+const std::vector<std::string>& aggregate_stat_names() {
+  static const std::vector<std::string> names{"mean", "sd", "min", "max", "median", "count"};
+  return names;
 }
 
 std::vector<ojson> expand_sweep(const std::vector<SweepVariable>& variables, SweepKind sweep) {

@@ -23,20 +23,50 @@
 //      "args": ["square_patch", "--out", "${run_dir}/mesh"],   // required: strings (or numbers)
 //      "allow_exit": [0, 3]}             // optional exit codes that do not fail the run, default [0]
 //   ],
-//   "gather": [                          // optional: one CSV in DIR per entry
-//     {"csv": "biaxial.csv",             // relative path inside DIR, unique
+//   "gather": [                          // optional: CSV tables in DIR
+//     {"csv": "biaxial.csv",             // relative path inside DIR; entries naming the same
+//                                        // csv are concatenated into it (see below)
 //      "summary": "sim/simulate.summary.json",   // JSON file relative to each run folder
 //      "rows": "metrics.biaxial.components",     // optional: an array in it, one row per element
 //      "columns": {"angle": "${angle}",          // ordered; a string with placeholders,
 //                  "error": "row:error_pct",     // "row:<path>" inside the current element,
 //                  "status": "summary:status"}}  // "summary:<path>" inside the summary
 //   ],
+//   "aggregate": [                       // optional: grouped statistics of the tables, computed
+//     {"csv": "biaxial_summary.csv",     // after the gather step, in this order; unique, not a
+//                                        // gather csv
+//      "from": "biaxial.csv",            // a gather csv or an earlier aggregate csv
+//      "where": {"component": ["E11", "E22"], "fiber_angle_deg": [45]},  // optional (see below)
+//      "group_by": ["model", "load_kind"],                // required, may be []
+//      "stats": {"strain_error_pct": ["mean", "sd", "count"]}}   // required, non-empty
+//   ],
 //   "plots": [                           // optional: rendered with gnuplot when it is on PATH
-//     {"png": "error.png", "csv": "biaxial.csv",   // csv must be one of the gather tables
+//     {"png": "error.png", "csv": "biaxial.csv",   // csv: a gather or an aggregate table
 //      "gnuplot": "plot '${csv}' using 2:5 with points"}   // a string or a list of lines
 //   ]
 // }
 // Comments (// and /* */) are allowed in pipeline files.
+//
+// Shared gather CSVs: several gather entries may name the same csv (say one per summary
+// file); the file then holds all rows of the first such entry (every run), then all rows of
+// the next, and so on. Their columns must have the same names in the same order, so that
+// the file has one header.
+//
+// Aggregates: each aggregate reads the table "from" (as written, cell texts), keeps the rows
+// that pass every "where" filter (a column name: a non-empty list of strings, numbers or
+// booleans; a row passes when its cell text equals one of them, numbers compared as their
+// shortest text, so 45 and 45.0 both match the cell "45"), and groups them by the
+// "group_by" columns, one output row per distinct combination in order of first appearance;
+// "group_by": [] makes one row for the whole table (also when no row passes). The output
+// columns are the group_by columns, then "<column>_<stat>" for every column of "stats" and
+// every stat of its list, in file order. Stats: mean, sd (sample standard deviation, n - 1),
+// min, max, median (the mean of the two middle values for even n) and count. They use only
+// the numeric cells of the group (decimal numbers; empty and other text cells are skipped):
+// count is the number of numeric cells, the others are empty when there are none (sd when
+// there are fewer than 2), never nan. Values are written like gather cells: integral values
+// exactly, others with %.10g. Every column named in where, group_by and stats must be a
+// column of the "from" table (known before running: the gather columns, or the output
+// columns of the earlier aggregate), and the output column names must be distinct.
 //
 // Placeholders: ${name} is a variable's value; ${name.field} (a dot path, array indices as
 // numbers) a field of an object-valued one. A whole object substitutes as its "label" field
@@ -49,7 +79,8 @@
 //
 // Outputs in DIR: runs/<run_id>/ (one folder per run, emptied when the run starts; the steps
 // run there as working directory and log stdout+stderr to <step>.log), the gather CSVs, the
-// plots with their gnuplot scripts (<png>.gp) and logs (<png>.log), pipeline.summary.json.
+// aggregate CSVs, the plots with their gnuplot scripts (<png>.gp) and logs (<png>.log),
+// pipeline.summary.json.
 //
 // Runs: run_id is a slug of the variable values, "angle-45_ratio-20-60_mesh-3" (characters
 // other than letters, digits, '.', '+' and '-' become '-'; an object value uses its "label");
@@ -98,9 +129,31 @@ struct GatherSpec {
   std::string key;      ///< "gather[i]"
 };
 
+/// A "where" filter: keep rows whose cell in `column` is one of `values` (cell texts).
+struct AggregateFilter {
+  std::string column;
+  std::vector<std::string> values;
+};
+
+/// The statistics of one value column, in file order.
+struct AggregateStats {
+  std::string column;
+  std::vector<std::string> stats;  ///< each one of aggregate_stat_names()
+};
+
+struct AggregateSpec {
+  std::string csv;                       ///< output, relative to DIR
+  std::string from;                      ///< a gather CSV or an earlier aggregate CSV
+  std::vector<AggregateFilter> where;
+  std::vector<std::string> group_by;     ///< may be empty: one row for the whole table
+  std::vector<AggregateStats> stats;     ///< non-empty
+  std::vector<std::string> header;       ///< the output columns, known at parse time
+  std::string key;                       ///< "aggregate[i]"
+};
+
 struct PlotSpec {
   std::string png;      ///< relative to DIR
-  std::string csv;      ///< one of the gather CSVs
+  std::string csv;      ///< one of the gather or aggregate CSVs
   std::string gnuplot;  ///< script text with placeholders
   std::string key;      ///< "plots[i]"
 };
@@ -112,7 +165,8 @@ struct PipelineSpec {
   std::vector<SweepVariable> variables;
   SweepKind sweep = SweepKind::grid;
   std::vector<StepSpec> steps;
-  std::vector<GatherSpec> gather;
+  std::vector<GatherSpec> gather;       ///< entries may share a csv (same columns)
+  std::vector<AggregateSpec> aggregates;
   std::vector<PlotSpec> plots;
   ojson source;                        ///< the document as read
 };
@@ -144,6 +198,12 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file,
 
 /// load_pipeline_json + parse_pipeline.
 PipelineSpec load_pipeline(const std::filesystem::path& path);
+
+/// The distinct gather CSVs in order of first appearance (entries may share one).
+std::vector<std::string> gather_csvs(const PipelineSpec& spec);
+
+/// The stat names an aggregate accepts: mean, sd, min, max, median, count.
+const std::vector<std::string>& aggregate_stat_names();
 
 /// The variable assignments of every run, in run order (grid: first variable slowest).
 /// No variables gives one empty assignment.

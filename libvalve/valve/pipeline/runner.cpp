@@ -170,7 +170,11 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
       [&](double fraction, const std::string& detail) { progress.update(fraction, detail); },
       options.quiet);
 
-  for (const auto& g : spec.gather) result.tables.push_back(write_gather(spec, g, runs, out));
+  // Aggregates read the tables as just made, in memory: earlier aggregates included.
+  std::map<std::string, CsvTable> tables;
+  for (const auto& csv : gather_csvs(spec)) result.tables.push_back(write_gather_csv(spec, csv, runs, out, &tables[csv]));
+  for (const auto& a : spec.aggregates)
+    result.aggregates.push_back(write_aggregate(a, tables.at(a.from), out, &tables[a.csv]));
   const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
   if (!spec.plots.empty() && !gnuplot)
     std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
@@ -231,8 +235,10 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   for (const auto& t : result.tables) {
     nlohmann::json missing = nlohmann::json::array();
     for (const auto& x : t.missing) missing.push_back({{"run_id", x.run_id}, {"reason", x.reason}});
-    m["csv"].push_back({{"file", t.path.string()}, {"rows", t.rows}, {"missing_summaries", missing}});
+    m["csv"].push_back({{"file", t.path.string()}, {"kind", "gather"}, {"rows", t.rows}, {"missing_summaries", missing}});
   }
+  for (const auto& a : result.aggregates)
+    m["csv"].push_back({{"file", a.path.string()}, {"kind", "aggregate"}, {"from", (out / a.from).string()}, {"rows", a.rows}});
   m["plots"] = {{"made", nlohmann::json::array()}, {"skipped", nlohmann::json::array()}, {"failed", nlohmann::json::array()}};
   for (const auto& p : result.plots) {
     if (p.status == "made") m["plots"]["made"].push_back((out / p.png).string());

@@ -4,14 +4,17 @@
 // run in order with the run folder as working directory and their stdout+stderr in
 // <step>.log there, up to `jobs` runs at a time. A step whose exit code is not in its
 // allow_exit (or that cannot start, or is killed by a signal) fails the run and skips the
-// run's later steps; other runs go on. Then the gather tables and plots are written and
+// run's later steps; other runs go on. Then the gather tables (one file per csv, shared
+// entries concatenated), the aggregate tables (in file order) and the plots are written and
 // DIR/pipeline.summary.json (status ok only when every run and every attempted plot
-// succeeded; a plot skipped because gnuplot is absent is not a failure).
+// succeeded; a plot skipped because gnuplot is absent is not a failure; metrics.csv lists
+// the gather tables, then the aggregate tables, each with its "kind" and row count).
 #include <filesystem>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "valve/pipeline/aggregate.hpp"
 #include "valve/pipeline/gather.hpp"
 #include "valve/pipeline/pipeline_spec.hpp"
 
@@ -59,7 +62,8 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs,
 
 struct PipelineOutcome {
   std::vector<RunOutcome> runs;
-  std::vector<GatherResult> tables;
+  std::vector<GatherResult> tables;         ///< one per gather csv, in order of first appearance
+  std::vector<AggregateResult> aggregates;  ///< one per aggregate entry
   std::vector<PlotResult> plots;
   std::string status;  ///< "ok" or "failed"
   std::string reason;
@@ -67,7 +71,7 @@ struct PipelineOutcome {
 };
 
 /// Resolves the stages (throws InputError before writing anything), then runs, gathers,
-/// plots and writes DIR/pipeline.summary.json.
+/// aggregates, plots and writes DIR/pipeline.summary.json.
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options);
 
 }  // namespace valve

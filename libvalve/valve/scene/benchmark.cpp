@@ -78,7 +78,7 @@ ClosureCost measure_closure(const SceneConfig& scene, const TriMesh& mesh, Model
   VecX b = f;
   apply_constraints(A, b, sys->constrained());
   const LinearSolverType type = res.summary.solver == "bdf2" ? sc.bdf2.linear_solver : sc.statics.linear_solver;
-  auto solver = make_linear_solver(type);
+  auto solver = make_linear_solver(type, 1e-10, 2000, sys->num_dofs());
   if (solver->needs_symmetric()) A = symmetric_part(A);
   solver->factorize(A);  // symbolic analysis once, as in a run
   std::vector<double> t;

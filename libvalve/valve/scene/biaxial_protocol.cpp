@@ -48,7 +48,11 @@ void BiaxialProtocol::install(SimulationHooks& hooks) {
 nlohmann::json BiaxialProtocol::report() const {
   nlohmann::json components = nlohmann::json::array();
   for (const auto& c : compare_with_law(last_E_, last_S_, *law_))
-    components.push_back({{"component", c.component}, {"simulated", c.simulated}, {"law", c.law}, {"error_pct", c.error_pct}});
+    components.push_back({{"component", c.component},
+                          {"kind", c.component == "E12" ? "shear" : "normal"},
+                          {"simulated", c.simulated},
+                          {"law", c.law},
+                          {"error_pct", c.error_pct}});
   return {{"increments", increments_}, {"components", components},
           {"note", "material axes; E12 is the tensor shear strain; S is 2nd Piola-Kirchhoff in MPa"}};
 }

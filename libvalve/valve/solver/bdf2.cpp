@@ -11,7 +11,7 @@ namespace valve {
 
 Bdf2Integrator::Bdf2Integrator(MechanicalSystem& system, Bdf2Options options)
     : sys_(system), opt_(std::move(options)) {
-  solver_ = make_linear_solver(opt_.linear_solver, opt_.iterative_tolerance, opt_.iterative_max_iterations);
+  solver_ = make_linear_solver(opt_.linear_solver, opt_.iterative_tolerance, opt_.iterative_max_iterations, sys_.num_dofs());
   monitor_ = opt_.monitor_nodes;
   if (monitor_.empty())
     for (int i = 0; i < sys_.num_nodes(); ++i)

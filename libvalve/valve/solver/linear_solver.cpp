@@ -110,6 +110,7 @@ class IterativeSolver final : public LinearSolver {
 }  // namespace
 
 LinearSolverType parse_linear_solver(const std::string& name) {
+  if (name == "auto") return LinearSolverType::automatic;
   if (name == "cholmod_llt") return LinearSolverType::cholmod_llt;
   if (name == "cholmod_ldlt") return LinearSolverType::cholmod_ldlt;
   if (name == "umfpack") return LinearSolverType::umfpack;
@@ -117,11 +118,12 @@ LinearSolverType parse_linear_solver(const std::string& name) {
   if (name == "cg") return LinearSolverType::cg;
   if (name == "bicgstab") return LinearSolverType::bicgstab;
   if (name == "lu") return LinearSolverType::lu;
-  throw InputError("linear solver: expected cholmod_llt|cholmod_ldlt|umfpack|klu|cg|bicgstab|lu, found \"" + name + "\"");
+  throw InputError("linear solver: expected auto|cholmod_llt|cholmod_ldlt|umfpack|klu|cg|bicgstab|lu, found \"" + name + "\"");
 }
 
 std::string to_string(LinearSolverType t) {
   switch (t) {
+    case LinearSolverType::automatic: return "auto";
     case LinearSolverType::cholmod_llt: return "cholmod_llt";
     case LinearSolverType::cholmod_ldlt: return "cholmod_ldlt";
     case LinearSolverType::umfpack: return "umfpack";
@@ -133,8 +135,10 @@ std::string to_string(LinearSolverType t) {
   return "?";
 }
 
-std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tol, int max_it) {
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tol, int max_it, int dofs) {
   switch (type) {
+    case LinearSolverType::automatic:
+      return make_linear_solver(dofs > kLargeSystemDofs ? LinearSolverType::umfpack : LinearSolverType::klu, tol, max_it);
     case LinearSolverType::cholmod_llt:
       return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_llt", true);
     case LinearSolverType::cholmod_ldlt:

@@ -22,7 +22,7 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
                            double load_start) {
   const auto t_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
-  auto solver = make_linear_solver(opt.linear_solver, opt.iterative_tolerance, opt.iterative_max_iterations);
+  auto solver = make_linear_solver(opt.linear_solver, opt.iterative_tolerance, opt.iterative_max_iterations, sys.num_dofs());
   SolverSummary sum;
   sum.linear_solver = solver->name();
   const VecX v = VecX::Zero(x.size());

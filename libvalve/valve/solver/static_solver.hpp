@@ -27,7 +27,7 @@ struct StaticOptions {
   double min_increment = 1e-5;
   long max_increments = 2000;
   double max_wall_seconds = 600;
-  LinearSolverType linear_solver = LinearSolverType::klu;  // exact Newton: pressure is non-symmetric
+  LinearSolverType linear_solver = LinearSolverType::automatic;  // non-symmetric (pressure): KLU or UMFPACK
   double iterative_tolerance = 1e-10;
   int iterative_max_iterations = 5000;
 };

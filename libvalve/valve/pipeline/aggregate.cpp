@@ -1,0 +1,133 @@
+#include "valve/pipeline/aggregate.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/error.hpp"
+
+namespace valve {
+namespace fs = std::filesystem;
+
+namespace {
+
+size_t column_index(const CsvTable& table, const std::string& column, const AggregateSpec& aggregate) {
+  const auto it = std::find(table.header.begin(), table.header.end(), column);
+  if (it == table.header.end())
+    throw Error(aggregate.key + ": the table " + aggregate.from + " has no column " + column);
+  return static_cast<size_t>(it - table.header.begin());
+}
+
+std::string number_cell(double x) {
+  // Integral values exactly (counts, min/max of integer columns); the rest like gather cells.
+  char buf[40];
+  if (x == std::floor(x) && std::fabs(x) < 1e15)
+    std::snprintf(buf, sizeof buf, "%.0f", x == 0 ? 0.0 : x);  // no "-0"
+  else
+    std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<double> numeric_cell(const std::string& text) {
+  const char* begin = text.data();
+  const char* end = text.data() + text.size();
+  // from_chars is locale-independent and takes no '+'; allow one before a digit or point.
+  if (begin != end && *begin == '+' && begin + 1 != end && (std::isdigit(static_cast<unsigned char>(begin[1])) || begin[1] == '.'))
+    ++begin;
+  if (begin == end) return std::nullopt;
+  double x = 0;
+  const auto [ptr, ec] = std::from_chars(begin, end, x, std::chars_format::general);
+  if (ec != std::errc() || ptr != end || !std::isfinite(x)) return std::nullopt;
+  return x;
+}
+
+std::string stat_cell(const std::string& stat, std::vector<double> values) {
+  const size_t n = values.size();
+  if (stat == "count") return number_cell(static_cast<double>(n));
+  if (n == 0) return "";
+  double sum = 0;
+  for (double v : values) sum += v;
+  const double mean = sum / static_cast<double>(n);
+  if (stat == "mean") return number_cell(mean);
+  if (stat == "sd") {
+    if (n < 2) return "";
+    // Two passes: the one-pass sum of squares loses digits when the spread is small
+    // compared with the mean (strains around 1 differing in the 6th digit).
+    double squares = 0;
+    for (double v : values) squares += (v - mean) * (v - mean);
+    return number_cell(std::sqrt(squares / static_cast<double>(n - 1)));
+  }
+  if (stat == "min") return number_cell(*std::min_element(values.begin(), values.end()));
+  if (stat == "max") return number_cell(*std::max_element(values.begin(), values.end()));
+  if (stat == "median") {
+    std::sort(values.begin(), values.end());
+    const double mid = n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
+    return number_cell(mid);
+  }
+  throw Error("aggregate: unknown stat " + stat);
+}
+
+CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
+  std::vector<std::pair<size_t, const AggregateFilter*>> filters;
+  for (const auto& f : aggregate.where) filters.emplace_back(column_index(from, f.column, aggregate), &f);
+  std::vector<size_t> keys;
+  for (const auto& g : aggregate.group_by) keys.push_back(column_index(from, g, aggregate));
+  std::vector<size_t> value_columns;
+  for (const auto& s : aggregate.stats) value_columns.push_back(column_index(from, s.column, aggregate));
+
+  // Per group (in order of first appearance): the numeric values of each stats column.
+  std::vector<std::vector<std::string>> group_keys;
+  std::vector<std::vector<std::vector<double>>> group_values;
+  std::map<std::vector<std::string>, size_t> group_of;
+  auto group_for = [&](const std::vector<std::string>& key) {
+    const auto [it, added] = group_of.emplace(key, group_keys.size());
+    if (added) {
+      group_keys.push_back(key);
+      group_values.emplace_back(value_columns.size());
+    }
+    return it->second;
+  };
+  // No group_by: the whole table is one group, present even when no row passes (count 0).
+  if (keys.empty()) group_for({});
+
+  for (const auto& row : from.rows) {
+    // A short row (never written by gather) reads as empty cells.
+    auto cell = [&row](size_t c) { return c < row.size() ? row[c] : std::string(); };
+    const bool kept = std::all_of(filters.begin(), filters.end(), [&](const auto& f) {
+      return std::find(f.second->values.begin(), f.second->values.end(), cell(f.first)) != f.second->values.end();
+    });
+    if (!kept) continue;
+    std::vector<std::string> key;
+    for (size_t c : keys) key.push_back(cell(c));
+    const size_t g = group_for(key);
+    for (size_t v = 0; v < value_columns.size(); ++v)
+      if (const auto x = numeric_cell(cell(value_columns[v]))) group_values[g][v].push_back(*x);
+  }
+
+  CsvTable table;
+  table.header = aggregate.header;
+  for (size_t g = 0; g < group_keys.size(); ++g) {
+    std::vector<std::string> row = group_keys[g];
+    for (size_t v = 0; v < aggregate.stats.size(); ++v)
+      for (const auto& stat : aggregate.stats[v].stats) row.push_back(stat_cell(stat, group_values[g][v]));
+    table.rows.push_back(row);
+  }
+  return table;
+}
+
+AggregateResult write_aggregate(const AggregateSpec& aggregate, const CsvTable& from, const fs::path& out_dir,
+                                CsvTable* table) {
+  const CsvTable result = aggregate_table(aggregate, from);
+  AggregateResult out{out_dir / aggregate.csv, aggregate.from, result.rows.size()};
+  write_file_atomic(out.path, to_csv(result));
+  if (table) *table = result;
+  return out;
+}
+
+}  // namespace valve
