@@ -51,6 +51,9 @@ class MechanicalSystem {
   bool has_velocity_terms() const { return has_velocity_terms_; }
   DampingTerm* damping() { return damping_; }
   const std::vector<TermTiming>& timings() const { return timings_; }
+  /// Unique coupled node pairs (a < b) of all terms, built by finalize(); for mesh edges
+  /// these are the triangle edges (used by solvers to limit strain increments).
+  const std::vector<std::pair<int, int>>& couplings() const { return couplings_; }
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
   /// Largest |f| over unconstrained dofs.
   double max_free_force(const VecX& f) const;
@@ -63,6 +66,7 @@ class MechanicalSystem {
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<TermTiming> timings_;
   BlockJacobian dfdx_, dfdv_;
+  std::vector<std::pair<int, int>> couplings_;
   bool has_velocity_terms_ = false;
   DampingTerm* damping_ = nullptr;
 };

@@ -64,9 +64,17 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
           continue;
         }
         ++sum.newton_iterations;
-        double longest = 0;
+        // Step limits: the trust radius (displacement) and the strain increment of any edge.
+        double longest = 0, strain = 0;
         for (int i = 0; i < sys.num_nodes(); ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
-        if (longest > trust) dx *= trust / longest;  // δ too large for this state
+        for (const auto& [a, b] : sys.couplings()) {
+          const Vec3 e = node3(x, b) - node3(x, a);
+          const double l = e.norm();
+          if (l > 0) strain = std::max(strain, std::abs((e + node3(dx, b) - node3(dx, a)).norm() - l) / l);
+        }
+        const double scale = std::min({1.0, trust / std::max(longest, 1e-300),
+                                        opt.max_strain_increment / std::max(strain, 1e-300)});
+        dx *= scale;
         const VecX trial = x + dx;
         VecX ft;
         if (!sys.evaluate(State{trial, v, load, 0.0}, ft, false, false)) {
@@ -76,11 +84,17 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
         const double r1 = free_norm(ft, cons);
         x = trial;
         accepted = true;
-        // Switched evolution relaxation, with a bias towards growth: while a membrane swings
-        // through (the pressure is constant and stress has not built up) the residual stays
-        // flat, and plain SER would keep δ, and the step, tiny forever. Growth is bounded so
-        // one lucky step cannot jump to an undamped Newton step far from equilibrium.
-        delta *= std::clamp(1.5 * r0 / std::max(r1, 1e-300), 0.25, 4.0);
+        if (scale < 1) {
+          // The step had to be cut: δ is too large for this state. Shrink it in proportion,
+          // so the next linear step is about the size the limits allow.
+          delta *= std::max(scale, 0.1);
+        } else {
+          // Switched evolution relaxation, with a bias towards growth: while a membrane swings
+          // through (the pressure is constant and stress has not built up) the residual stays
+          // flat, and plain SER would keep δ, and the step, tiny forever. Growth is bounded so
+          // one lucky step cannot jump to an undamped Newton step far from equilibrium.
+          delta *= std::clamp(1.5 * r0 / std::max(r1, 1e-300), 0.25, 4.0);
+        }
       }
       if (!accepted) return false;
     }
