@@ -33,7 +33,7 @@ void parse_static(JsonReader& r, StaticOptions& o) {
   o.max_newton_iterations = r.integer("max_newton_iterations", 500, 1, 10000000);
   o.initial_increment = r.number("initial_increment", 1.0, 1e-9, 1.0);
   o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", 1e-2, 1e-20, 1e20);
-  o.max_strain_increment = r.number("max_strain_increment", 0.1, 1e-6, 10.0);
+  o.max_strain_increment = r.number("max_strain_increment", 0.0, 0.0, 10.0);
   if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
   else r.record("trust_radius", "2.5% of the bounding-box diagonal");
   o.min_increment = r.number("min_increment", 1e-5, 1e-15, 1.0);

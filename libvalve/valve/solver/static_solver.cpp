@@ -67,13 +67,13 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
         // Step limits: the trust radius (displacement) and the strain increment of any edge.
         double longest = 0, strain = 0;
         for (int i = 0; i < sys.num_nodes(); ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
-        for (const auto& [a, b] : sys.couplings()) {
+        for (const auto& [a, b] : opt.max_strain_increment > 0 ? sys.couplings() : std::vector<std::pair<int, int>>{}) {
           const Vec3 e = node3(x, b) - node3(x, a);
           const double l = e.norm();
           if (l > 0) strain = std::max(strain, std::abs((e + node3(dx, b) - node3(dx, a)).norm() - l) / l);
         }
-        const double scale = std::min({1.0, trust / std::max(longest, 1e-300),
-                                        opt.max_strain_increment / std::max(strain, 1e-300)});
+        double scale = std::min(1.0, trust / std::max(longest, 1e-300));
+        if (opt.max_strain_increment > 0) scale = std::min(scale, opt.max_strain_increment / std::max(strain, 1e-300));
         dx *= scale;
         const VecX trial = x + dx;
         VecX ft;
