@@ -4,4 +4,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/setup.sh
 cd build
+# Two test processes share two cores: keep BLAS single-threaded so they do not oversubscribe.
+export OPENBLAS_NUM_THREADS=1
 ctest -j2 --output-on-failure --timeout 900
