@@ -7,6 +7,8 @@
 #include "valve/pipeline/runner.hpp"
 
 using namespace valve;
+using valve::test::message_of;
+using valve::test::parse;
 using valve::test::read_text;
 using valve::test::TempDir;
 using valve::test::write_script;
@@ -17,7 +19,6 @@ namespace {
 
 using Rows = std::vector<std::vector<std::string>>;
 
-PipelineSpec parse(const std::string& text) { return parse_pipeline(ojson::parse(text), "P.json", "/data/study"); }
 
 // A pipeline with one gather table biaxial.csv (model, component, angle, err) and the given
 // aggregate list (JSON text).
@@ -29,14 +30,6 @@ std::string with_aggregate(const std::string& aggregate, const std::string& extr
     "aggregate": )" + aggregate + extra + "}";
 }
 
-std::string message_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 // The rows of biaxial.csv used by the computation tests, in gather order.
 const CsvTable biaxial{{"model", "component", "angle", "err"},

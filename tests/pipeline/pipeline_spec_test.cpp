@@ -1,16 +1,19 @@
 #include "valve/pipeline/pipeline_spec.hpp"
 
 #include <catch2/catch.hpp>
+
+#include "pipeline_test_support.hpp"
 #include <set>
 
 #include "valve/core/error.hpp"
 
 using namespace valve;
+using valve::test::message_of;
+using valve::test::parse;
 namespace fs = std::filesystem;
 
 namespace {
 
-PipelineSpec parse(const std::string& text) { return parse_pipeline(ojson::parse(text), "P.json", "/data/study"); }
 
 // A pipeline with the given variables (JSON object text) and one step using `args`.
 std::string with_variables(const std::string& variables, const std::string& args = R"(["--out", "${run_dir}"])",
@@ -19,14 +22,6 @@ std::string with_variables(const std::string& variables, const std::string& args
          "}]}";
 }
 
-std::string message_of(const std::string& text) {
-  try {
-    parse(text);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
 
 std::vector<std::string> texts(const SweepVariable& v) {
   std::vector<std::string> out;

@@ -8,7 +8,23 @@
 #include <sstream>
 #include <string>
 
+#include "valve/core/error.hpp"
+#include "valve/pipeline/pipeline_spec.hpp"
+
 namespace valve::test {
+
+/// Parses pipeline text as if it were /data/study/P.json.
+inline PipelineSpec parse(const std::string& text) { return parse_pipeline(ojson::parse(text), "P.json", "/data/study"); }
+
+/// The InputError message parsing `text` gives, or "(no error)".
+inline std::string message_of(const std::string& text) {
+  try {
+    parse(text);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
 
 /// A fresh folder under the system temp dir, removed with everything in it at scope exit.
 class TempDir {
