@@ -4,7 +4,9 @@
 //                [--relax-iterations N]   (triangulate+equalize rounds, default 60; 0 = raw random points)
 // Writes analytic meshes (seed 3.2.2.1, Fig. 3.1) as .vtp with FiberDirection, NodeRole,
 // BoundaryType and Leaflet arrays, plus generate.summary.json with their quality.
-// KIND: square_patch | aortic_leaflet | three_leaflet_valve. --count K writes K meshes with
+// KIND: square_patch | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
+// [--gamma DEG] [--commissure-height MM] [--graft-leaflet K --graft-width-pct W
+// --graft-height-pct H], fibers at 25 deg by default). --count K writes K meshes with
 // seeds S, S+1, ..., named NAME_<seed>.vtp.
 #include <cstdio>
 #include <filesystem>
@@ -36,20 +38,22 @@ double parse_number(const CommandLine& cl, const std::string& flag, double fallb
 int main(int argc, char** argv) {
   return run_stage("valve-generate", [&] {
     CommandLine cl(argc, argv,
-                   {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name", "jitter", "relax-iterations"},
+                   {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name", "jitter",
+                    "relax-iterations", "gamma", "commissure-height", "graft-leaflet", "graft-width-pct", "graft-height-pct"},
                    {"quiet"});
     if (cl.positional().size() != 1)
-      throw InputError("valve-generate: KIND: expected one of square_patch|aortic_leaflet|three_leaflet_valve, found " +
+      throw InputError("valve-generate: KIND: expected one of square_patch|aortic_leaflet|three_leaflet_valve|aortic_valve, found " +
                        std::to_string(cl.positional().size()) + " positional arguments");
     const std::string kind = cl.positional()[0];
-    if (kind != "square_patch" && kind != "aortic_leaflet" && kind != "three_leaflet_valve")
-      throw InputError("valve-generate: KIND: expected square_patch|aortic_leaflet|three_leaflet_valve, found \"" + kind + "\"");
+    if (kind != "square_patch" && kind != "aortic_leaflet" && kind != "three_leaflet_valve" && kind != "aortic_valve")
+      throw InputError("valve-generate: KIND: expected square_patch|aortic_leaflet|three_leaflet_valve|aortic_valve, found \"" + kind + "\"");
     const fs::path out = cl.require("out");
-    const int default_triangles = kind == "square_patch" ? 229 : (kind == "aortic_leaflet" ? 221 : 663);
+    const bool valve = kind == "three_leaflet_valve" || kind == "aortic_valve";
+    const int default_triangles = kind == "square_patch" ? 229 : (kind == "aortic_leaflet" ? 221 : (valve ? 663 : 660));
     const int triangles = static_cast<int>(parse_number(cl, "triangles", default_triangles, 2, 5e6));
     const auto seed = static_cast<std::uint64_t>(parse_number(cl, "seed", 1, 0, 1e15));
     const int count = static_cast<int>(parse_number(cl, "count", 1, 1, 10000));
-    const double fiber = parse_number(cl, "fiber-angle", 0, -360, 360);
+    const double fiber = parse_number(cl, "fiber-angle", kind == "aortic_valve" ? 25 : 0, -360, 360);
     const std::string name = cl.get("name").value_or(kind);
 
     StageSummary summary("generate", out);
@@ -59,7 +63,7 @@ int main(int argc, char** argv) {
     Progress progress("valve-generate", cl.has("quiet"));
     for (int k = 0; k < count; ++k) {
       TriMesh mesh;
-      PlanarMeshOptions mo{triangles / (kind == "three_leaflet_valve" ? 3 : 1), seed + k};
+      PlanarMeshOptions mo{triangles / (valve ? 3 : 1), seed + k};
       mo.jitter = parse_number(cl, "jitter", 0.0, 0.0, 100.0);
       mo.max_iterations = static_cast<int>(parse_number(cl, "relax-iterations", mo.max_iterations, 0, 100000));
       if (kind == "square_patch") {
@@ -69,6 +73,24 @@ int main(int argc, char** argv) {
         o.mesh = mo;
         mesh = generate_square_patch(o);
         summary.parameters()["side_mm"] = o.side;
+      } else if (kind == "aortic_valve") {
+        AorticValveOptions o;
+        o.diameter = parse_number(cl, "diameter", 20.0, 1e-6, 1e6);
+        o.gamma_deg = parse_number(cl, "gamma", 22.0, 1, 89);
+        o.commissure_height = parse_number(cl, "commissure-height", 5.0, 1e-6, 1e6);
+        o.fiber_angle_deg = fiber;
+        const int graft = static_cast<int>(parse_number(cl, "graft-leaflet", 0, 0, 2));
+        const double wpct = parse_number(cl, "graft-width-pct", 0, 0, 99), hpct = parse_number(cl, "graft-height-pct", 0, -49, 99);
+        o.width_scale[graft] = 1 + wpct / 100;
+        o.height_scale[graft] = 1 + hpct / 100;
+        o.mesh = mo;
+        mesh = generate_aortic_valve(o);
+        summary.parameters()["diameter_mm"] = o.diameter;
+        summary.parameters()["gamma_deg"] = o.gamma_deg;
+        summary.parameters()["commissure_height_mm"] = o.commissure_height;
+        summary.parameters()["graft_leaflet"] = graft;
+        summary.parameters()["graft_width_pct"] = wpct;
+        summary.parameters()["graft_height_pct"] = hpct;
       } else {
         LeafletOptions o;
         o.diameter = parse_number(cl, "diameter", 20.0, 1e-6, 1e6);

@@ -6,10 +6,16 @@
 // optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json.
 // Exit 0 ok, 2 bad input, 3 not converged or failed (the summary says why; a non-converged
 // run still writes its last state, a failed one writes no mesh).
+#include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <filesystem>
+#include <optional>
+#include <set>
 
+#include "valve/analysis/coaptation.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
+#include "valve/mechanics/contact.hpp"
 #include "valve/config/scene_config.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
@@ -88,6 +94,25 @@ int main(int argc, char** argv) {
       incs.push_back({{"load", inc.load}, {"status", to_string(inc.summary.status)}, {"steps", inc.summary.steps}});
     summary.metrics()["increments"] = incs;
     if (biaxial) summary.metrics()["biaxial"] = biaxial->report();
+    if (res.root)
+      summary.metrics()["aortic_root"] = {{"status", to_string(res.root->summary.status)},
+                                          {"reason", res.root->summary.reason},
+                                          {"mesh_diameter_mm", res.root->mesh_diameter},
+                                          {"unloaded_diameter_mm", res.root->unloaded_diameter},
+                                          {"tube_only_diameter_mm", res.root->tube_diameter},
+                                          {"loaded_diameter_mm", res.root->loaded_diameter},
+                                          {"newton_iterations", res.root->summary.newton_iterations},
+                                          {"wall_seconds", res.root->summary.wall_seconds}};
+    for (const auto& term : system->terms())
+      if (const auto* c = dynamic_cast<const ContactTerm*>(term.get())) {
+        const ContactStatistics& st = c->statistics();
+        summary.metrics()["contact"] = {{"detection_mm", c->detection_distance()},
+                                        {"candidate_updates", st.candidate_updates},
+                                        {"candidate_pairs", st.candidate_pairs},
+                                        {"active_pairs", st.active_pairs},
+                                        {"deepest_penetration_mm", st.deepest_penetration},
+                                        {"broad_phase_seconds", st.broad_phase_seconds}};
+      }
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
       summary.set_status("failed", res.summary.reason);
       summary.write();
@@ -113,10 +138,37 @@ int main(int argc, char** argv) {
                                    {"StretchCross", sc, true},
                                    {"AreaRatio", ar, true}};
     if (scene.model == ModelKind::membrane_fe) {
-      MembraneFETerm fe(mesh, scene.material.law(), scene.thickness);
+      // Each triangle's stress from its own material (leaflet_materials, else the scene's).
+      std::vector<std::unique_ptr<MembraneFETerm>> laws;
+      laws.push_back(std::make_unique<MembraneFETerm>(mesh, scene.material.law(), scene.thickness));
+      for (const auto& lm : scene.leaflet_materials)
+        laws.push_back(std::make_unique<MembraneFETerm>(mesh, lm.material.law(), lm.thickness));
       Eigen::MatrixXd S(mesh.num_triangles(), 3);
-      for (int t = 0; t < mesh.num_triangles(); ++t) S.row(t) = fe.stress(res.x, t).transpose();
+      for (int t = 0; t < mesh.num_triangles(); ++t) {
+        size_t group = 0;
+        for (size_t g = 0; g < scene.leaflet_materials.size(); ++g) {
+          const auto& ls = scene.leaflet_materials[g].leaflets;
+          if (std::find(ls.begin(), ls.end(), mesh.leaflet[t]) != ls.end()) group = g + 1;
+        }
+        S.row(t) = laws[group]->stress(res.x, t).transpose();
+      }
       arrays.push_back({"PK2Stress", S, true});
+    }
+    // Coaptation (seed 4.2.5) wherever leaflets can meet: a mesh of several leaflets.
+    std::optional<CoaptationResult> coaptation;
+    if (std::set<int>(mesh.leaflet.begin(), mesh.leaflet.end()).size() > 1) {
+      coaptation = analyze_coaptation(mesh, res.x);
+      Eigen::MatrixXd gap(mesh.num_nodes(), 1), flag(mesh.num_nodes(), 1);
+      for (int i = 0; i < mesh.num_nodes(); ++i) gap(i, 0) = coaptation->gap_mm[i], flag(i, 0) = coaptation->coapting[i];
+      arrays.push_back({kCoaptationGapArray, gap, false});
+      arrays.push_back({kCoaptingArray, flag, false});
+      nlohmann::json per = nlohmann::json::array();
+      for (const auto& l : coaptation->leaflets)
+        per.push_back({{"leaflet", l.leaflet}, {"area_mm2", l.area_mm2}, {"midline_height_mm", l.midline_height_mm},
+                       {"min_height_mm", l.min_height_mm}, {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
+                       {"closed", l.closed}});
+      summary.metrics()["coaptation"] = {{"closed", coaptation->closed}, {"central_gap", coaptation->central_gap},
+                                         {"threshold_mm", CoaptationOptions{}.threshold_mm}, {"leaflets", per}};
     }
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);
@@ -147,6 +199,7 @@ int main(int argc, char** argv) {
       for (const auto& l : leaflets)
         std::printf("  leaflet %d: free edge %.3f mm, midline %.3f mm\n", l["leaflet"].get<int>(),
                     l["free_edge_mm"].get<double>(), l["midline_mm"].get<double>());
+      if (coaptation) std::printf("  coaptation: %s\n", coaptation->report().c_str());
     }
     return ok ? 0 : 3;
   });

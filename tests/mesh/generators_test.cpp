@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "valve/analysis/leaflet_metrics.hpp"
+#include "valve/core/error.hpp"
 #include "valve/mesh/generators.hpp"
 #include "valve/mesh/quality.hpp"
 #include "valve/mesh/topology.hpp"
@@ -90,4 +91,71 @@ TEST_CASE("mesh validation rejects broken meshes", "[mesh]") {
   bad = m;
   bad.points(5, 1) = std::nan("");
   CHECK_THROWS_WITH(validate_mesh(bad, "x.vtp"), Catch::Contains("point 5"));
+}
+
+TEST_CASE("aortic valve of seed 4.2.1: cusp outline, cylinder, commissures, quality", "[mesh][seed]") {
+  const double pi = 3.14159265358979, d = 20, gamma = 22 * pi / 180;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    AorticValveOptions o;
+    o.mesh.seed = seed;
+    const TriMesh m = generate_aortic_valve(o);
+    validate_mesh(m, "aortic valve");
+    const auto q = summarize_quality(triangle_qualities(m.points, m.triangles));
+    INFO("seed " << seed);
+    CHECK(std::abs(m.num_triangles() - 660) <= 15);
+    CHECK(q.mean >= 0.95);
+    CHECK(m.initial.rows() == 0);  // native leaflets start unstressed
+    // Every node lies on the cylinder of diameter d; the attachment spans from the nadir
+    // (z = −(curve depth + commissure height)) to the commissure tops at z = 0.
+    const double depth = d * std::pow(std::sin(1.047 / 2), 2) / std::tan(gamma);
+    double zmin = 1e9, zmax = -1e9;
+    for (int i = 0; i < m.num_nodes(); ++i) {
+      CHECK(std::hypot(m.points(i, 0), m.points(i, 1)) == Approx(d / 2).epsilon(1e-9));
+      if (m.boundary[i] == BoundaryType::attached) {
+        CHECK(m.roles[i] == NodeRole::fixed);
+        zmin = std::min(zmin, m.points(i, 2)), zmax = std::max(zmax, m.points(i, 2));
+      }
+    }
+    CHECK(zmin == Approx(-(depth + 5)).margin(1e-9));
+    CHECK(zmax == Approx(0).margin(1e-9));
+    // Flat area of one cusp: w (depth + h_c) − ∫ d sin²(x/d)/tan γ dx over |x| <= w/2.
+    const double w = 1.047 * d, a = w / (2 * d);
+    const double expected = w * (depth + 5) - d * d / std::tan(gamma) * (a - std::sin(2 * a) / 2);
+    for (int l = 0; l < 3; ++l) {
+      double area = 0;
+      for (int t = 0; t < m.num_triangles(); ++t)
+        if (m.leaflet[t] == l) area += triangle_area(m.points, m.triangles[t]);
+      // Chords of the cylinder cut a little area off the curved cusp.
+      CHECK(area == Approx(expected).epsilon(0.01));
+      const auto edge = free_edge_polyline(m, l);
+      CHECK(polyline_length(edge, flatten(m.points)) == Approx(w).epsilon(0.01));
+    }
+    // Fibers at ±25° to the free edge, mirror-symmetric about each leaflet's midline.
+    for (int t = 0; t < m.num_triangles(); ++t) CHECK(std::abs(m.fiber(t, 2)) == Approx(std::sin(25 * pi / 180)).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("aortic valve graft: larger rest shape, sewn in at the root's radius", "[mesh][seed]") {
+  AorticValveOptions o;
+  o.width_scale[0] = 1.21;
+  o.height_scale[0] = 1.27;
+  const TriMesh m = generate_aortic_valve(o);
+  validate_mesh(m, "graft valve");
+  REQUIRE(m.initial.rows() == m.num_nodes());
+  double graft_area = 0, native_area = 0, top = -1e9;
+  for (int t = 0; t < m.num_triangles(); ++t) (m.leaflet[t] == 0 ? graft_area : native_area) += triangle_area(m.points, m.triangles[t]);
+  // Scaling the flat shape by 1.21 x 1.27 scales its area by their product.
+  CHECK(graft_area == Approx(1.21 * 1.27 * native_area / 2).epsilon(0.015));
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    const double r_rest = std::hypot(m.points(i, 0), m.points(i, 1));
+    const double r_start = std::hypot(m.initial(i, 0), m.initial(i, 1));
+    CHECK(r_start == Approx(10).epsilon(1e-9));                          // all start on the root
+    CHECK((r_rest == Approx(12.1).epsilon(1e-9) || r_rest == Approx(10).epsilon(1e-9)));
+    CHECK(m.initial(i, 2) == m.points(i, 2));                            // only radial moves
+    top = std::max(top, m.points(i, 2));
+  }
+  // The taller graft reaches 27 % higher above the shared nadir than the native leaflets.
+  const double pi = 3.14159265358979, depth = 20 * std::pow(std::sin(1.047 / 2), 2) / std::tan(22 * pi / 180);
+  CHECK(top == Approx(0.27 * (depth + 5)).epsilon(1e-6));
+  CHECK_THROWS_AS([] { AorticValveOptions b; b.width_scale[1] = 0.9; return generate_aortic_valve(b); }(), InputError);
 }

@@ -106,6 +106,75 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     sc.fixed.pin_centre = f.boolean("pin_centre", false);
     r.record("fixed", f.finish());
   }
+  if (r.has("contact")) {
+    JsonReader c = r.object("contact");
+    ContactOptions co;
+    co.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
+    co.penetration_stiffness = c.quantity("penetration_stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
+    co.zone = c.quantity("zone", Dimension::length, std::string("0.1 mm"), 1e-9, 1e3);
+    co.between_leaflets = c.boolean("between_leaflets", true);
+    co.self_contact = c.boolean("self", true);
+    co.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
+    co.broad_phase = parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
+    if (co.detection != 0 && co.detection <= co.zone) c.fail("detection", "0 (automatic) or more than zone", std::to_string(co.detection) + " mm");
+    if (!co.between_leaflets && !co.self_contact) c.fail("self", "true when between_leaflets is false", "false");
+    r.record("contact", c.finish());
+    sc.contact = co;
+  }
+  if (r.has("aortic_root")) {
+    JsonReader a = r.object("aortic_root");
+    AorticRootConfig ac;
+    // Wall properties come from a preset (with its literature source) unless given inline.
+    ac.preset = a.string("preset", std::string("aortic_root"));
+    const fs::path preset_file = config_directory() / "materials" / (ac.preset + ".json");
+    const json preset = load_json_file(preset_file);
+    JsonReader pr(preset, preset_file.string(), "");
+    const double t_default = pr.quantity("wall_thickness", Dimension::length, std::nullopt, 1e-6, 100);
+    const double e_default = pr.quantity("youngs_modulus", Dimension::pressure, std::nullopt, 1e-9, 1e6);
+    ac.source = pr.string("source", std::string(""));
+    pr.string("name", std::string(""));
+    pr.string("note", std::string(""));
+    pr.finish();
+    ac.wall_thickness = a.quantity("wall_thickness", Dimension::length, std::to_string(t_default) + " mm", 1e-6, 100);
+    ac.youngs_modulus = a.quantity("youngs_modulus", Dimension::pressure, std::to_string(e_default) + " MPa", 1e-9, 1e6);
+    ac.unloaded_diameter_ratio = a.number("unloaded_diameter_ratio", 1.15, 0.5, 2.0);
+    const std::optional<std::string> p_default =
+        sc.pressure ? std::optional<std::string>(std::to_string(sc.pressure->value) + " MPa") : std::nullopt;
+    ac.pressure = a.quantity("pressure", Dimension::pressure, p_default, 0.0, 1e3);
+    const auto point = a.number_list("axis_point", std::vector<double>{0, 0, 0});
+    const auto dir = a.number_list("axis_direction", std::vector<double>{0, 0, 1});
+    if (point.size() != 3) a.fail("axis_point", "[x, y, z] in mm", std::to_string(point.size()) + " numbers");
+    if (dir.size() != 3 || Vec3(dir[0], dir[1], dir[2]).norm() == 0)
+      a.fail("axis_direction", "a non-zero [x, y, z]", describe_json(a.used().at("axis_direction")));
+    ac.axis_point = Vec3(point[0], point[1], point[2]);
+    ac.axis_direction = Vec3(dir[0], dir[1], dir[2]).normalized();
+    r.record("aortic_root", a.finish());
+    sc.aortic_root = ac;
+  }
+  if (r.has("leaflet_materials")) {
+    const json& list = r.raw("leaflet_materials");
+    if (!list.is_array()) r.fail("leaflet_materials", "a list of {leaflets, material, thickness}", describe_json(list));
+    json used_list = json::array();
+    for (size_t k = 0; k < list.size(); ++k) {
+      const std::string key = "leaflet_materials[" + std::to_string(k) + "]";
+      if (!list[k].is_object()) r.fail(key, "an object {leaflets, material, thickness}", describe_json(list[k]));
+      JsonReader e(list[k], file, key + ".");
+      LeafletMaterialConfig lm;
+      lm.leaflets = e.integer_list("leaflets", std::nullopt);
+      if (lm.leaflets.empty()) e.fail("leaflets", "a non-empty list of leaflet indices", "[]");
+      json used_material;
+      if (!e.has("material")) e.fail("material", "a preset name or a material object", "nothing");
+      lm.material = load_material(e.raw("material"), file, key + ".material", base_dir, &used_material);
+      e.record("material", used_material);
+      lm.thickness = e.quantity("thickness", Dimension::length,
+                                lm.material.thickness ? std::optional<std::string>(std::to_string(*lm.material.thickness) + " mm")
+                                                      : std::optional<std::string>(std::to_string(sc.thickness) + " mm"),
+                                1e-6, 100);
+      used_list.push_back(e.finish());
+      sc.leaflet_materials.push_back(std::move(lm));
+    }
+    r.record("leaflet_materials", used_list);
+  }
   {
     JsonReader l = r.object("load");
     sc.load_increments = l.number_list("increments", std::vector<double>{1.0});

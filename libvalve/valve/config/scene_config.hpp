@@ -1,6 +1,7 @@
 #pragma once
 // The scene JSON: a mesh plus only the components the scene declares (model, material,
-// pressure, edge loads, damping, fixed nodes, load increments, solver, monitor, output).
+// pressure, edge loads, damping, fixed nodes, contact, aortic root, per-leaflet materials,
+// load increments, solver, monitor, output).
 // Everything is validated and defaulted here, in one place; `used` records the values
 // after defaults for the stage summary. See configs/README.md for the schema.
 #include <filesystem>
@@ -10,6 +11,7 @@
 
 #include "valve/config/json_reader.hpp"
 #include "valve/config/material_config.hpp"
+#include "valve/mechanics/contact.hpp"
 #include "valve/mechanics/damping.hpp"
 #include "valve/solver/bdf2.hpp"
 #include "valve/solver/static_solver.hpp"
@@ -54,6 +56,24 @@ struct MonitorConfig {
   Vec3 point = Vec3::Zero();
 };
 
+/// The aortic root as a boundary condition (seed 4.2.1): a thin elastic tube around `axis`
+/// that the transvalvular pressure distends before the leaflets are loaded.
+struct AorticRootConfig {
+  Vec3 axis_point = Vec3::Zero();
+  Vec3 axis_direction = Vec3::UnitZ();
+  double unloaded_diameter_ratio = 1.15;  // mesh root diameter / root diameter at zero pressure
+  double wall_thickness = 0;              // mm (from the preset)
+  double youngs_modulus = 0;              // MPa (from the preset)
+  double pressure = 0;                    // MPa distending the root (default: the scene pressure)
+  std::string preset, source;
+};
+/// A material (and thickness) for some leaflets, overriding the scene's.
+struct LeafletMaterialConfig {
+  std::vector<int> leaflets;
+  MaterialConfig material;
+  double thickness = 0;  // mm
+};
+
 struct SceneConfig {
   std::filesystem::path file, mesh_path;
   ModelKind model = ModelKind::mass_spring;
@@ -64,6 +84,9 @@ struct SceneConfig {
   std::optional<EdgeLoadConfig> edge_loads;
   std::optional<DampingConfig> damping;
   FixedConfig fixed;
+  std::optional<ContactOptions> contact;
+  std::optional<AorticRootConfig> aortic_root;
+  std::vector<LeafletMaterialConfig> leaflet_materials;
   std::vector<double> load_increments{1.0};
   SolverKind solver = SolverKind::automatic;
   Bdf2Options bdf2;

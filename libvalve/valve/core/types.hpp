@@ -20,6 +20,13 @@ using Tri = Eigen::Vector3i;
 inline auto node3(VecX& v, int i) { return v.segment<3>(3 * i); }
 inline auto node3(const VecX& v, int i) { return v.segment<3>(3 * i); }
 
+/// [a]×, the matrix with [a]× b = a × b.
+inline Mat3 cross_matrix(const Vec3& a) {
+  Mat3 m;
+  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
+  return m;
+}
+
 /// Flattens an N x 3 matrix into a 3N vector (node-major).
 inline VecX flatten(const MatX3& m) {
   return Eigen::Map<const VecX>(m.data(), m.size());

@@ -169,6 +169,13 @@ TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
     for (vtkIdType i = 0; i < np; ++i) m.boundary.push_back(static_cast<BoundaryType>(static_cast<int>(a->GetComponent(i, 0))));
   if (auto* a = pd->GetCellData()->GetArray("Leaflet"); a && a->GetNumberOfTuples() == m.num_triangles())
     for (int t = 0; t < m.num_triangles(); ++t) m.leaflet.push_back(static_cast<int>(a->GetComponent(t, 0)));
+  if (auto* a = pd->GetPointData()->GetArray("InitialDisplacement");
+      a && a->GetNumberOfComponents() == 3 && a->GetNumberOfTuples() == np) {
+    m.initial = m.points;
+    for (vtkIdType i = 0; i < np; ++i)
+      for (int c = 0; c < 3; ++c) m.initial(i, c) += a->GetComponent(i, c);
+    if (!m.initial.allFinite()) throw_input_error(file, "InitialDisplacement", "finite values", "NaN or infinity");
+  }
   if (extra) {
     for (int k = 0; k < pd->GetPointData()->GetNumberOfArrays(); ++k) {
       vtkDataArray* a = pd->GetPointData()->GetArray(k);
@@ -218,6 +225,10 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
     a->SetNumberOfValues(mesh.num_triangles());
     for (int t = 0; t < mesh.num_triangles(); ++t) a->SetValue(t, mesh.leaflet[t]);
     pd->GetCellData()->AddArray(a);
+  }
+  if (!positions && mesh.initial.rows() == mesh.num_nodes()) {
+    const MatX3 d = mesh.initial - mesh.points;
+    add_double_array(pd->GetPointData(), "InitialDisplacement", d);
   }
   for (const auto& a : extra) {
     const Eigen::Index expected = a.per_cell ? mesh.num_triangles() : x.rows();

@@ -3,6 +3,8 @@
 // .stl, .ply and .obj; writes .vtp with named point and cell arrays:
 //   FiberDirection (cell, 3), NodeRole (point), BoundaryType (point), Leaflet (cell),
 // plus any extra arrays (Displacement, Stretch, GreenStrain, ...), and the field SPACE=LPS.
+// A mesh whose starting positions differ from its rest shape (a graft sewn in under
+// compression) carries them as the point array InitialDisplacement (initial − rest).
 #include <Eigen/Core>
 #include <filesystem>
 #include <string>

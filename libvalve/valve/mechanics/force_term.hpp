@@ -2,6 +2,7 @@
 // The interface every force term implements. Terms know nothing of solvers: they add
 // nodal forces f(x, v) and, when asked, their Jacobians df/dx and df/dv into a pattern
 // built once from couplings(). The solver sees only the sum of terms.
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +36,14 @@ class ForceTerm {
   }
   /// Whether df/dv is nonzero (damping).
   virtual bool depends_on_velocity() const { return false; }
+  /// Terms whose couplings follow the state (contact) refresh them here and return true
+  /// when couplings() grew; MechanicalSystem then rebuilds the Jacobian pattern.
+  virtual bool update_couplings(const VecX& x) {
+    (void)x;
+    return false;
+  }
+  /// Largest node displacement per solver step (mm) this term tolerates; infinity if any.
+  virtual double max_step_length() const { return std::numeric_limits<double>::infinity(); }
   /// Whether this is an applied load (pressure, edge loads) rather than a material or
   /// constraint response; solvers use the applied load to scale residual tolerances.
   virtual bool is_external_load() const { return false; }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "valve/core/error.hpp"
 
@@ -42,6 +43,11 @@ void MechanicalSystem::finalize() {
 }
 
 bool MechanicalSystem::evaluate(const State& s, VecX& f, bool want_dfdx, bool want_dfdv) {
+  if (want_dfdx) {
+    bool grown = false;
+    for (auto& t : terms_) grown |= t->update_couplings(s.x);
+    if (grown) finalize();
+  }
   f.setZero(3 * n_);
   if (want_dfdx) dfdx_.set_zero();
   if (want_dfdv) dfdv_.set_zero();
@@ -81,6 +87,12 @@ bool MechanicalSystem::energy(const State& s, double& e) const {
     if (!t->energy(s, e)) return false;
   }
   return true;
+}
+
+double MechanicalSystem::max_step_length() const {
+  double m = std::numeric_limits<double>::infinity();
+  for (const auto& t : terms_) m = std::min(m, t->max_step_length());
+  return m;
 }
 
 double MechanicalSystem::max_free_force(const VecX& f) const {

@@ -36,7 +36,8 @@ class MechanicalSystem {
   const std::vector<char>& constrained() const { return constrained_; }
   void fix_node(int i) { constrained_[3 * i] = constrained_[3 * i + 1] = constrained_[3 * i + 2] = 1; }
 
-  /// f = Σ terms; fills dfdx()/dfdv() when asked. Returns false if any entry of f is not finite.
+  /// f = Σ terms; fills dfdx()/dfdv() when asked. A Jacobian evaluation first lets terms
+  /// with state-dependent couplings (contact) refresh them, rebuilding the pattern if needed. Returns false if any entry of f is not finite.
   bool evaluate(const State& s, VecX& f, bool want_dfdx, bool want_dfdv);
   /// Critical damping follows the tangent: recompute its coefficients from the current
   /// dfdx() and update f and dfdv() to match. No-op for other damping modes.
@@ -55,6 +56,8 @@ class MechanicalSystem {
   /// these are the triangle edges (used by solvers to limit strain increments).
   const std::vector<std::pair<int, int>>& couplings() const { return couplings_; }
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
+  /// Smallest max_step_length() of the terms (infinity if none limits the step).
+  double max_step_length() const;
   /// Largest |f| over unconstrained dofs.
   double max_free_force(const VecX& f) const;
 

@@ -3,14 +3,6 @@
 #include <Eigen/Geometry>
 
 namespace valve {
-namespace {
-Mat3 cross_matrix(const Vec3& a) {
-  Mat3 m;
-  m << 0, -a.z(), a.y(), a.z(), 0, -a.x(), -a.y(), a.x(), 0;
-  return m;
-}
-}  // namespace
-
 PressureTerm::PressureTerm(const TriMesh& mesh, double pressure, bool along_normal, std::vector<char> active)
     : signed_pressure_(along_normal ? pressure : -pressure) {
   for (int t = 0; t < mesh.num_triangles(); ++t)

@@ -1,6 +1,7 @@
 #include "valve/mesh/generators.hpp"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 
 #include "valve/core/error.hpp"
@@ -111,7 +112,7 @@ TriMesh leaflet_row(const LeafletOptions& opt, int count, double circumference) 
 void weld(TriMesh& m, double tol) {
   const int n = m.num_nodes();
   std::vector<int> map(n), kept_boundary;
-  MatX3 pts(n, 3);
+  MatX3 pts(n, 3), start(m.initial.rows() == n ? n : 0, 3);
   std::vector<NodeRole> roles;
   std::vector<BoundaryType> boundary;
   int count = 0;
@@ -128,11 +129,14 @@ void weld(TriMesh& m, double tol) {
     if (m.boundary[i] != BoundaryType::interior) kept_boundary.push_back(count);
     map[i] = count;
     pts.row(count) = p;
+    if (start.rows()) start.row(count) = m.initial.row(i);
     roles.push_back(m.roles[i]);
     boundary.push_back(m.boundary[i]);
     ++count;
   }
   pts.conservativeResize(count, 3);
+  if (start.rows()) start.conservativeResize(count, 3);
+  m.initial = start;
   for (auto& t : m.triangles)
     for (int k = 0; k < 3; ++k) t[k] = map[t[k]];
   m.points = pts;
@@ -140,7 +144,123 @@ void weld(TriMesh& m, double tol) {
   m.boundary = boundary;
 }
 
+// The flat aortic cusp of seed 4.2.1, centred on u = 0 with its nadir at v = 0: attachment
+// curve v = a sin²(u / d') between the commissures, commissure sides up to v_top, straight
+// free edge. Boundary order: left commissure top, down the left side, along the curve,
+// up the right side, then the free edge back. `attached_count` receives the number of
+// boundary nodes before the free edge (both top corners count as attached).
+struct CuspShape {
+  double half_width, curve_scale, curve_depth_scale, side_height;
+  double curve(double u) const {
+    const double s = std::sin(u / curve_depth_scale);
+    return curve_scale * s * s;
+  }
+  double top() const { return curve(half_width) + side_height; }
+};
+
+PlanarDomain cusp_domain(const CuspShape& c, int* attached_count) {
+  PlanarDomain d;
+  // Area and perimeter by sampling (the mesher only needs them for the spacing).
+  const int n = 2000;
+  double under = 0, curve_len = 0;
+  for (int k = 0; k < n; ++k) {
+    const double u0 = -c.half_width + 2 * c.half_width * k / n, u1 = -c.half_width + 2 * c.half_width * (k + 1) / n;
+    under += 0.5 * (c.curve(u0) + c.curve(u1)) * (u1 - u0);
+    curve_len += std::hypot(u1 - u0, c.curve(u1) - c.curve(u0));
+  }
+  d.area = 2 * c.half_width * c.top() - under;
+  d.perimeter = curve_len + 2 * c.side_height + 2 * c.half_width;
+  d.boundary = [c, curve_len, attached_count](double s) {
+    std::vector<Vec2> pts;
+    const Vec2 tl(-c.half_width, c.top()), bl(-c.half_width, c.curve(-c.half_width));
+    const Vec2 br(c.half_width, c.curve(c.half_width)), tr(c.half_width, c.top());
+    auto side = subdivide(tl, bl, std::max(1, static_cast<int>(std::lround(c.side_height / s))));
+    pts.insert(pts.end(), side.begin(), side.end());
+    // Even arc-length spacing along the curve.
+    const int m = std::max(2, static_cast<int>(std::lround(curve_len / s)));
+    const int fine = 4000;
+    std::vector<double> cum(fine + 1, 0.0);
+    auto at = [&](int k) { const double u = -c.half_width + 2 * c.half_width * k / fine; return Vec2(u, c.curve(u)); };
+    for (int k = 1; k <= fine; ++k) cum[k] = cum[k - 1] + (at(k) - at(k - 1)).norm();
+    int j = 0;
+    for (int k = 0; k < m; ++k) {
+      const double target = cum[fine] * k / m;
+      while (j < fine && cum[j + 1] < target) ++j;
+      const double t = (target - cum[j]) / std::max(cum[j + 1] - cum[j], 1e-300);
+      pts.push_back(at(j) + t * (at(j + 1) - at(j)));
+    }
+    side = subdivide(br, tr, std::max(1, static_cast<int>(std::lround(c.side_height / s))));
+    pts.insert(pts.end(), side.begin(), side.end());
+    *attached_count = static_cast<int>(pts.size()) + 1;  // + the top right corner
+    auto edge = subdivide(tr, tl, std::max(1, static_cast<int>(std::lround(2 * c.half_width / s))));
+    pts.insert(pts.end(), edge.begin(), edge.end());
+    return pts;
+  };
+  d.signed_distance = [c](const Vec2& p) {
+    return std::max({std::abs(p.x()) - c.half_width, p.y() - c.top(), c.curve(std::clamp(p.x(), -c.half_width, c.half_width)) - p.y()});
+  };
+  return d;
+}
+
 }  // namespace
+
+TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
+  if (!(opt.diameter > 0) || !(opt.gamma_deg > 0 && opt.gamma_deg < 90) || !(opt.width_ratio > 0) ||
+      !(opt.commissure_height > 0))
+    throw InputError("aortic valve generator: expected diameter > 0, 0 < gamma < 90 deg, width ratio > 0, commissure height > 0");
+  const double d = opt.diameter, R = d / 2;
+  const double native_top = d * std::pow(std::sin(opt.width_ratio / 2), 2) / std::tan(opt.gamma_deg * kPi / 180) +
+                            opt.commissure_height;
+  TriMesh mesh;
+  mesh.points.resize(0, 3);
+  mesh.fiber.resize(0, 3);
+  MatX3 initial(0, 3);
+  bool any_graft = false;
+  for (int k = 0; k < 3; ++k) {
+    const double ws = opt.width_scale[k], hs = opt.height_scale[k];
+    if (!(ws >= 1 && ws < 2 && hs > 0.5 && hs < 2))
+      throw InputError("aortic valve generator: leaflet " + std::to_string(k) +
+                       ": expected width scale in [1, 2) and height scale in (0.5, 2)");
+    any_graft |= ws != 1 || hs != 1;
+    const CuspShape shape{ws * opt.width_ratio * d / 2, hs * d / std::tan(opt.gamma_deg * kPi / 180), ws * d,
+                          hs * opt.commissure_height};
+    int attached = 0;
+    PlanarMeshOptions mo = opt.mesh;
+    mo.seed = opt.mesh.seed + 7919 * k;
+    const PlanarMesh pm = mesh_planar_domain(cusp_domain(shape, &attached), mo);
+    // Rest: wrapped on radius ws R (isometric); start: the same angles on the root radius.
+    const double Rk = ws * R, phi0 = 2 * kPi * k / 3;
+    const int base = mesh.num_nodes();
+    mesh.points.conservativeResize(base + static_cast<int>(pm.points.size()), 3);
+    initial.conservativeResize(base + static_cast<int>(pm.points.size()), 3);
+    for (size_t i = 0; i < pm.points.size(); ++i) {
+      const double phi = phi0 + pm.points[i].x() / Rk, z = pm.points[i].y() - native_top;
+      mesh.points.row(base + i) << Rk * std::cos(phi), Rk * std::sin(phi), z;
+      initial.row(base + i) << R * std::cos(phi), R * std::sin(phi), z;
+      const bool boundary = static_cast<int>(i) < pm.num_boundary, on_attachment = static_cast<int>(i) < attached;
+      mesh.roles.push_back(boundary && on_attachment ? NodeRole::fixed : NodeRole::free);
+      mesh.boundary.push_back(!boundary ? BoundaryType::interior
+                                        : (on_attachment ? BoundaryType::attached : BoundaryType::free_edge));
+    }
+    const int tbase = mesh.num_triangles();
+    mesh.fiber.conservativeResize(tbase + static_cast<int>(pm.triangles.size()), 3);
+    const double angle = opt.fiber_angle_deg * kPi / 180;
+    for (size_t t = 0; t < pm.triangles.size(); ++t) {
+      const Tri& tri = pm.triangles[t];
+      mesh.triangles.emplace_back(base + tri[0], base + tri[2], base + tri[1]);  // normals toward the axis
+      const double uc = (pm.points[tri[0]].x() + pm.points[tri[1]].x() + pm.points[tri[2]].x()) / 3;
+      const double phi = phi0 + uc / Rk;
+      const Vec3 e_u(-std::sin(phi), std::cos(phi), 0), e_v(0, 0, 1);
+      // Left half descends toward the midline, right half rises from it (mirror images).
+      const double a = uc < 0 ? -angle : angle;
+      mesh.fiber.row(tbase + t) = std::cos(a) * e_u + std::sin(a) * e_v;
+      mesh.leaflet.push_back(k);
+    }
+  }
+  if (any_graft) mesh.initial = initial;
+  weld(mesh, 1e-6 * d);
+  return mesh;
+}
 
 TriMesh generate_square_patch(const SquarePatchOptions& opt) {
   if (opt.side <= 0) throw InputError("square patch: side: expected > 0");

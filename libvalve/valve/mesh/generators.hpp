@@ -35,4 +35,31 @@ TriMesh generate_aortic_leaflet(const LeafletOptions& opt);
 /// ignored). Leaflet k is centred on the ray at angle 2πk/3 in the xy plane.
 TriMesh generate_three_leaflet_valve(const LeafletOptions& opt);
 
+/// The aortic valve of seed 4.2.1 (Fig. 4.1-4.2): each leaflet, flat, is bounded below by
+/// the attachment curve y = d sin²(x/d) / tan γ (x from the midline, |x| <= w/2, w = 1.047 d,
+/// i.e. a third of the root circumference: the unrolled intersection of the root cylinder
+/// with a plane tilted by γ), on the sides by the commissures (height h_c) and on top by the
+/// straight free edge. Three leaflets are joined at the commissures and wrapped into the
+/// cylinder of diameter d, free edges at z = 0 for native leaflets, normals toward the axis.
+///
+/// Grafts: leaflet k's flat shape may be scaled by width_scale[k] and height_scale[k]. Its
+/// nadir stays on the root's; a taller graft reaches higher up the commissures (seed 4.4).
+/// A wider graft has more free edge than its third of the root: its rest shape is wrapped
+/// on a cylinder of radius width_scale · d/2 (an isometry) and it starts at the root's radius,
+/// compressed circumferentially (TriMesh::initial) until the pressure takes up the slack.
+///
+/// Fibers (Fig. 4.6): parallel to the free edge, or at fiber_angle_deg to it in a pattern
+/// symmetric about the midline, running down toward the midline like a hammock.
+struct AorticValveOptions {
+  double diameter = 20.0;           // mm, root diameter the leaflets are unstressed at
+  double gamma_deg = 22.0;
+  double width_ratio = 1.047;       // leaflet width / diameter
+  double commissure_height = 5.0;   // mm
+  double fiber_angle_deg = 25.0;    // 0 = parallel to the free edge
+  double width_scale[3] = {1, 1, 1};
+  double height_scale[3] = {1, 1, 1};
+  PlanarMeshOptions mesh{220, 1};   // per leaflet
+};
+TriMesh generate_aortic_valve(const AorticValveOptions& opt);
+
 }  // namespace valve

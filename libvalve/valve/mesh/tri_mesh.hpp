@@ -21,8 +21,11 @@ struct TriMesh {
   std::vector<NodeRole> roles;       // per node
   std::vector<BoundaryType> boundary;  // per node
   std::vector<int> leaflet;          // per triangle: leaflet index (0 for single-leaflet meshes)
+  MatX3 initial;                     // starting positions if they differ from `points` (else empty)
 
   int num_nodes() const { return static_cast<int>(points.rows()); }
+  /// Where a simulation starts: `initial` if given, else the rest positions.
+  const MatX3& start_positions() const { return initial.rows() == num_nodes() ? initial : points; }
   int num_triangles() const { return static_cast<int>(triangles.size()); }
   /// Fills missing per-node / per-triangle arrays with defaults (free, interior, leaflet 0,
   /// fiber along the first edge projected in-plane).

@@ -1,9 +1,13 @@
 #include "valve/scene/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "valve/core/error.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
+#include "valve/mechanics/aortic_root.hpp"
+#include "valve/mechanics/contact.hpp"
 #include "valve/mechanics/damping.hpp"
 #include "valve/mechanics/mass_spring.hpp"
 #include "valve/mechanics/membrane_fe.hpp"
@@ -13,6 +17,66 @@
 #include "valve/solver/static_solver.hpp"
 
 namespace valve {
+
+namespace {
+
+// Leaflets listed in leaflet_materials get their own material and thickness; the rest of
+// the mesh gets the scene's. Each group is one term over its triangles.
+TriMesh triangle_subset(const TriMesh& m, const std::vector<char>& keep) {
+  TriMesh sub = m;
+  sub.triangles.clear();
+  sub.leaflet.clear();
+  sub.fiber.resize(0, 3);
+  std::vector<int> kept;
+  for (int t = 0; t < m.num_triangles(); ++t)
+    if (keep[t]) kept.push_back(t);
+  sub.fiber.resize(static_cast<int>(kept.size()), 3);
+  for (size_t k = 0; k < kept.size(); ++k) {
+    sub.triangles.push_back(m.triangles[kept[k]]);
+    sub.leaflet.push_back(m.leaflet[kept[k]]);
+    sub.fiber.row(k) = m.fiber.row(kept[k]);
+  }
+  return sub;
+}
+
+void add_material_term(const SceneConfig& sc, const TriMesh& m, const MaterialConfig& mat, double thickness,
+                       MechanicalSystem& sys) {
+  if (m.triangles.empty()) return;
+  if (sc.model == ModelKind::mass_spring)
+    sys.add_term(std::make_unique<MassSpringTerm>(m, mat.bilinear(), thickness));
+  else
+    sys.add_term(std::make_unique<MembraneFETerm>(m, mat.law(), thickness));
+}
+
+}  // namespace
+
+void add_material_terms(const SceneConfig& sc, const TriMesh& m, MechanicalSystem& sys) {
+  if (sc.leaflet_materials.empty()) {
+    add_material_term(sc, m, sc.material, sc.thickness, sys);
+    return;
+  }
+  std::vector<char> claimed(m.num_triangles(), 0);
+  for (size_t g = 0; g < sc.leaflet_materials.size(); ++g) {
+    const auto& lm = sc.leaflet_materials[g];
+    std::vector<char> keep(m.num_triangles(), 0);
+    int count = 0;
+    for (int t = 0; t < m.num_triangles(); ++t)
+      if (std::find(lm.leaflets.begin(), lm.leaflets.end(), m.leaflet[t]) != lm.leaflets.end()) {
+        if (claimed[t])
+          throw_input_error(sc.file.string(), "leaflet_materials[" + std::to_string(g) + "].leaflets",
+                            "each leaflet in one group", "leaflet " + std::to_string(m.leaflet[t]) + " listed twice");
+        keep[t] = claimed[t] = 1;
+        ++count;
+      }
+    if (count == 0)
+      throw_input_error(sc.file.string(), "leaflet_materials[" + std::to_string(g) + "].leaflets",
+                        "leaflet indices present in the mesh's Leaflet array", describe_json(json(lm.leaflets)));
+    add_material_term(sc, triangle_subset(m, keep), lm.material, lm.thickness, sys);
+  }
+  std::vector<char> rest(m.num_triangles());
+  for (int t = 0; t < m.num_triangles(); ++t) rest[t] = !claimed[t];
+  add_material_term(sc, triangle_subset(m, rest), sc.material, sc.thickness, sys);
+}
 
 std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriMesh& mesh) {
   const std::string where = sc.file.string();
@@ -37,11 +101,14 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
     sys->constrained()[3 * centre] = sys->constrained()[3 * centre + 1] = 1;
   }
   // Model only what the scene requires: each block below exists only if declared.
-  if (sc.model == ModelKind::mass_spring)
-    sys->add_term(std::make_unique<MassSpringTerm>(m, sc.material.bilinear(), sc.thickness));
-  else
-    sys->add_term(std::make_unique<MembraneFETerm>(m, sc.material.law(), sc.thickness));
-  if (sc.pressure) sys->add_term(std::make_unique<PressureTerm>(m, sc.pressure->value, sc.pressure->along_normal));
+  add_material_terms(sc, m, *sys);
+  std::vector<const ForceTerm*> external;
+  if (sc.pressure) {
+    auto term = std::make_unique<PressureTerm>(m, sc.pressure->value, sc.pressure->along_normal);
+    external.push_back(term.get());
+    sys->add_term(std::move(term));
+  }
+  if (sc.contact) sys->add_term(std::make_unique<ContactTerm>(m, *sc.contact, external, sys->constrained()));
   if (sc.edge_loads)
     sys->add_term(std::make_unique<NodalLoadTerm>(
         biaxial_edge_forces(m, sc.edge_loads->stress_x, sc.edge_loads->stress_y, sc.thickness)));
@@ -90,7 +157,7 @@ SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, Mechanical
   Bdf2Options opt = sc.bdf2;
   opt.monitor_nodes = monitor;
   Bdf2Integrator integ(sys, opt);
-  integ.reset(flatten(mesh.points));
+  integ.reset(flatten(mesh.start_positions()));
   if (hooks.on_step) integ.on_accepted = hooks.on_step;
   for (size_t k = 0; k < sc.load_increments.size(); ++k) {
     const double load = sc.load_increments[k];
@@ -111,7 +178,7 @@ SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, Mechanical
 
 SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
   SimulationResult res;
-  res.x = flatten(mesh.points);
+  res.x = flatten(mesh.start_positions());
   double previous = 0;
   for (size_t k = 0; k < sc.load_increments.size(); ++k) {
     const double load = sc.load_increments[k];
@@ -131,7 +198,65 @@ SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, Mechanic
 
 }  // namespace
 
-SimulationResult simulate(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
+RootDistension distend_root(const SceneConfig& sc, const TriMesh& mesh, VecX& x) {
+  const AorticRootConfig& rc = *sc.aortic_root;
+  const RootGeometry g = root_geometry(mesh, rc.axis_point, rc.axis_direction);
+  RootDistension out;
+  out.mesh_diameter = 2 * g.mesh_radius;
+  const double r0 = g.mesh_radius / rc.unloaded_diameter_ratio;
+  out.unloaded_diameter = 2 * r0;
+  const double strain_factor = rc.pressure * r0 / (rc.youngs_modulus * rc.wall_thickness);
+  out.tube_diameter = strain_factor < 1 ? 2 * r0 / (1 - strain_factor) : std::numeric_limits<double>::infinity();
+  // The attachment is free to follow the root; everything else as in the scene, minus the
+  // leaflet pressure (the leaflets are loaded in the second step).
+  TriMesh free_mesh = mesh;
+  free_mesh.roles.assign(mesh.num_nodes(), NodeRole::free);
+  MechanicalSystem sys(free_mesh, sc.density, sc.thickness);
+  add_material_terms(sc, free_mesh, sys);
+  sys.add_term(std::make_unique<RootSpringTerm>(g, mesh.start_positions(), rc.youngs_modulus, rc.wall_thickness, r0));
+  sys.add_term(std::make_unique<RootPressureTerm>(g, rc.pressure));
+  sys.finalize();
+  x = flatten(mesh.start_positions());
+  // Start from the free tube's radius: the leaflets then carry little stress and the
+  // solve only corrects for their tension (hundreds of iterations fewer than from the mesh).
+  if (std::isfinite(out.tube_diameter)) {
+    const double scale = out.tube_diameter / out.mesh_diameter;
+    for (int i = 0; i < mesh.num_nodes(); ++i) {
+      const Vec3 p = node3(x, i), a = g.axis_point, u = g.axis_direction;
+      const Vec3 along = a + u * u.dot(p - a);
+      node3(x, i) = along + scale * (p - along);
+    }
+  }
+  // Straight at full pressure: the leaflets start unstressed near the distended diameter,
+  // while ramping the pressure from zero would first crush them onto the unloaded root.
+  out.summary = solve_static(sys, x, sc.statics, 1.0, 1.0);
+  out.summary.solver = "static";
+  double r = 0;
+  for (int i : g.nodes) r += radius_from_axis(g, node3(x, i));
+  out.loaded_diameter = 2 * r / g.nodes.size();
+  return out;
+}
+
+SimulationResult simulate(const SceneConfig& sc, const TriMesh& input_mesh, MechanicalSystem& sys,
+                          const SimulationHooks& hooks) {
+  std::optional<RootDistension> root;
+  TriMesh distended;
+  if (sc.aortic_root) {
+    VecX x;
+    root = distend_root(sc, input_mesh, x);
+    if (root->summary.status != SolverStatus::ok || !x.allFinite()) {
+      SimulationResult res;
+      res.x = flatten(input_mesh.start_positions());
+      res.summary = root->summary;
+      res.summary.status = root->summary.status == SolverStatus::ok ? SolverStatus::failed : root->summary.status;
+      res.summary.reason = "aortic root distension: " + root->summary.reason;
+      res.root = root;
+      return res;
+    }
+    distended = input_mesh;
+    distended.initial = unflatten(x);
+  }
+  const TriMesh& mesh = sc.aortic_root ? distended : input_mesh;
   const auto monitor = resolve_monitor(sc, mesh);
   SimulationResult res;
   // A per-step convergence rule (the biaxial protocol) is a property of the dynamics.
@@ -152,6 +277,7 @@ SimulationResult simulate(const SceneConfig& sc, const TriMesh& mesh, Mechanical
     res.summary.status = SolverStatus::failed;
     res.summary.reason = "non-finite positions";
   }
+  res.root = root;
   return res;
 }
 

@@ -3,6 +3,7 @@
 // run over the scene's load increments.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "valve/config/scene_config.hpp"
@@ -16,6 +17,10 @@ namespace valve {
 /// leaves the model unconstrained or names nodes the mesh does not have.
 std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& scene, const TriMesh& mesh);
 
+/// The membrane terms of a scene: one per material group (leaflet_materials), the scene's
+/// material for the leaflets no group claims.
+void add_material_terms(const SceneConfig& scene, const TriMesh& mesh, MechanicalSystem& system);
+
 /// Monitor nodes for the termination rule (empty = all free nodes).
 std::vector<int> resolve_monitor(const SceneConfig& scene, const TriMesh& mesh);
 
@@ -24,8 +29,22 @@ struct IncrementResult {
   SolverSummary summary;
 };
 
+/// The first of the aortic valve's two steps (seed 4.2.1): the root distended by the
+/// pressure to equilibrium with its wall and the leaflets, before the leaflets are loaded.
+struct RootDistension {
+  SolverSummary summary;
+  double mesh_diameter = 0;       // mm, attachment diameter of the mesh (leaflets unstressed)
+  double unloaded_diameter = 0;   // mm, the root at zero pressure
+  double tube_diameter = 0;       // mm, the root alone at the pressure: d0 / (1 − P r0 / (E t))
+  double loaded_diameter = 0;     // mm, mean attachment diameter after the distension
+};
+
+/// Step one alone: solves for the distended attachment; `x` gets all positions.
+RootDistension distend_root(const SceneConfig& scene, const TriMesh& mesh, VecX& x);
+
 struct SimulationResult {
   VecX x;                    // final positions, 3N
+  std::optional<RootDistension> root;
   SolverSummary summary;     // accumulated over increments; status of the last one
   std::vector<IncrementResult> increments;
 };

@@ -73,6 +73,11 @@ bool Bdf2Integrator::step(const History& in, double h, double load, History& out
   if (!solver_->factorize(A) || !solver_->solve(b, dx)) return false;
   out.x_prev = in.x;
   out.v_prev = in.v;
+  // A step longer than the force terms tolerate (contact: the detection slab) is a failed step.
+  const double limit = sys_.max_step_length();
+  if (std::isfinite(limit))
+    for (int i = 0; i < sys_.num_nodes(); ++i)
+      if (dx.segment<3>(3 * i).norm() > limit) return false;
   out.x = in.x + dx;
   out.v = in.euler ? VecX(dx / h) : VecX((1.5 * out.x - 2.0 * in.x + 0.5 * in.x_prev) / h);
   out.euler = false;

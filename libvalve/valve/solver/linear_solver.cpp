@@ -5,7 +5,9 @@
 #include <Eigen/KLUSupport>
 #include <Eigen/UmfPackSupport>
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <chrono>
+#include <vector>
 
 #include "valve/core/error.hpp"
 
@@ -38,10 +40,12 @@ class DirectSolver final : public LinearSolver {
   std::string name() const override { return name_; }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!analysed_ || A.nonZeros() != nnz_) {
+    if (!analysed_ || !same_pattern(A)) {
+      // Contact grows the Jacobian pattern during a solve: analyse again when it changes.
       dec_.analyzePattern(A);
       analysed_ = true;
-      nnz_ = A.nonZeros();
+      outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+      inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
     }
     dec_.factorize(A);
     ++stats_.factorizations;
@@ -65,8 +69,14 @@ class DirectSolver final : public LinearSolver {
   std::string name_;
   bool symmetric_;
   Decomposition dec_;
+  bool same_pattern(const SparseMatrix& A) const {
+    return A.isCompressed() && static_cast<size_t>(A.outerSize() + 1) == outer_.size() &&
+           static_cast<size_t>(A.nonZeros()) == inner_.size() &&
+           std::equal(outer_.begin(), outer_.end(), A.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), A.innerIndexPtr());
+  }
   bool analysed_ = false, ok_ = false;
-  Eigen::Index nnz_ = -1;
+  std::vector<int> outer_, inner_;
 };
 
 template <class Krylov>

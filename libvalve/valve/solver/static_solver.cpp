@@ -37,6 +37,8 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
     const MatX3 p = unflatten(x);
     trust = 0.025 * (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
   }
+  // Contact sees a node only inside its detection slab: no step may jump across it.
+  trust = std::min(trust, sys.max_step_length());
   // Ψtc iterations at a fixed load factor; returns true when the residual tolerance is met.
   auto newton = [&](double load) -> bool {
     const State s0{x, v, load, 0.0};

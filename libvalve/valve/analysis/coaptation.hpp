@@ -1,0 +1,94 @@
+#pragma once
+// Coaptation of a closed valve (seed 4.2.5): where adjacent leaflets touch, how much area
+// they share and how far the contact strip reaches down from each free edge.
+//
+// Gap. From every node a ray is cast along +n and −n, n being the area-weighted normal of
+// the deformed mesh over the node's own leaflet (other leaflets' triangles would tilt n at
+// a commissure); the gap is the distance to the nearest hit on a triangle of ANOTHER
+// leaflet. Both directions are cast because leaflet windings need not agree on which side
+// faces the neighbour. Rays are used, as in the seed, rather than closest-point distances:
+// a closest-point distance would also report a leaflet lying edge-on next to the node,
+// which is proximity, not overlap. A node shared by two leaflets (commissure corner) is in
+// contact by construction: gap 0, but it takes no part in the heights (its normal is
+// undefined and it would connect the contact regions of two leaflets).
+//
+// Coapting node: gap <= threshold (seed: 0.5 mm; contact keeps the leaflets a zone width
+// apart, so touching leaflets show a small positive gap, not 0).
+//
+// Area. A_L = Σ_{t in L} area_deformed(t) · (number of coapting nodes of t) / 3, i.e. the
+// integral over the deformed leaflet of the piecewise-linear interpolant of the coapting
+// indicator. Counting only fully coapting triangles would bias the area low by about one
+// row of triangles along the whole contact border; the interpolant places the border, on
+// average, half way between a coapting and a non-coapting node.
+//
+// Heights. d(v) = graph-geodesic distance from v to the nearest free-edge node of its
+// leaflet (multi-source Dijkstra over deformed edge lengths of the leaflet's own edges),
+// src(v) = that free-edge node. The height at free-edge node f is
+//   h(f) = max { d(v) : v coapting, src(v) = f, v connected to f through coapting nodes }
+// (0 if f does not coapt). Assigning each node to its nearest free-edge node measures the
+// strip "straight down" from f without a second geometric construction, and the
+// connectivity requirement keeps contact patches that are separated from the free edge
+// (e.g. a belly touching a neighbour lower down) out of the height. The graph distance
+// follows the mesh, so it overestimates a straight line by at most the zig-zag of the
+// triangulation (exact along grid lines of a structured mesh).
+//
+// Minimum height: the minimum of h over the free-edge nodes whose rest arc length from
+// either end of the free edge is at least commissure_margin × the free edge's rest length:
+// at the commissures the strip shrinks to nothing by anatomy, not because of a bad
+// closure, so the ends are excluded. A leaflet is closed when that minimum is > 0, i.e.
+// its coaptation strip is continuous along the free edge between the margins.
+#include <string>
+#include <vector>
+
+#include "valve/mesh/tri_mesh.hpp"
+
+namespace valve {
+
+struct CoaptationOptions {
+  double threshold_mm = 0.5;  // seed 4.2.5: a node coapts when its gap is at most this
+  /// Fraction of each free edge's rest length, at both ends, excluded from min_height_mm.
+  double commissure_margin = 0.1;
+  void validate() const;  // throws InputError: threshold not > 0, margin outside [0, 0.5)
+};
+
+/// Value of gap_mm for a node whose rays hit no other leaflet (and for nodes without
+/// triangles). A negative sentinel, never inf or NaN, so that it can be written to files
+/// and told apart from every real distance.
+constexpr double kCoaptationNoHit = -1.0;
+
+/// Point-array names under which a stage writes CoaptationResult::gap_mm and ::coapting.
+constexpr const char* kCoaptationGapArray = "CoaptationGap_mm";
+constexpr const char* kCoaptingArray = "Coapting";
+
+struct LeafletCoaptation {
+  int leaflet = 0;
+  double area_mm2 = 0;            // deformed, interpolated indicator (see above)
+  std::vector<int> free_edge;     // free_edge_polyline(mesh, leaflet), corners included
+  std::vector<double> height_mm;  // h(f) per free_edge node (0 where f does not coapt)
+  int middle_node = -1;           // free_edge_middle_node(mesh, leaflet)
+  double midline_height_mm = 0;   // h at middle_node (0 if there is none)
+  /// Minimum of h over the free-edge nodes outside the commissure margins; if no node lies
+  /// between the margins (very coarse free edge), h at the middle node. 0 without free edge.
+  double min_height_mm = 0;
+  /// Rest length of the free-edge segments whose two end nodes coapt, over the rest length
+  /// of the free edge (0 without free edge).
+  double coapting_fraction_of_free_edge = 0;
+  bool closed = false;  // min_height_mm > 0
+};
+
+struct CoaptationResult {
+  std::vector<double> gap_mm;  // per node, mm; kCoaptationNoHit where no ray hits
+  std::vector<int> coapting;   // per node, 1 if 0 <= gap_mm <= threshold, else 0
+  std::vector<LeafletCoaptation> leaflets;  // one per leaflet id present, ascending
+  bool closed = false;       // every leaflet closed (false for a mesh with one leaflet)
+  bool central_gap = false;  // some leaflet's free-edge middle node does not coapt
+  /// One line: closed / central gap and per leaflet area, midline and minimum height.
+  std::string report() const;
+};
+
+/// Coaptation of the deformed valve `x` (3N, node-major, mm). Throws InputError when x does
+/// not have 3N finite entries, per-node or per-triangle arrays have the wrong size, a leaflet
+/// index is negative, or the options are invalid.
+CoaptationResult analyze_coaptation(const TriMesh& mesh, const VecX& x, const CoaptationOptions& options = {});
+
+}  // namespace valve

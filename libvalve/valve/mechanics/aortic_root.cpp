@@ -1,0 +1,105 @@
+#include "valve/mechanics/aortic_root.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "valve/core/error.hpp"
+#include "valve/mesh/topology.hpp"
+
+namespace valve {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct Radial {
+  Vec3 e;    // unit radial direction
+  double r;  // distance from the axis
+  Mat3 P;    // I − u uᵀ
+};
+
+Radial radial(const RootGeometry& g, const Vec3& p) {
+  Radial out;
+  const Vec3& u = g.axis_direction;
+  out.P = Mat3::Identity() - u * u.transpose();
+  const Vec3 q = out.P * (p - g.axis_point);
+  out.r = q.norm();
+  out.e = out.r > 0 ? Vec3(q / out.r) : Vec3::Zero();
+  return out;
+}
+
+// Adds φ(r) e_r and its Jacobian for φ(r) = a + b r.
+void add_radial(const RootGeometry& g, int i, const VecX& x, double a, double b, VecX& f, BlockJacobian* dfdx) {
+  const Radial rd = radial(g, node3(x, i));
+  if (rd.r <= 0) return;
+  const double phi = a + b * rd.r;
+  node3(f, i) += phi * rd.e;
+  if (dfdx) dfdx->add(i, i, b * rd.e * rd.e.transpose() + phi / rd.r * (rd.P - rd.e * rd.e.transpose()));
+}
+
+}  // namespace
+
+double radius_from_axis(const RootGeometry& g, const Vec3& p) { return radial(g, p).r; }
+
+RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Vec3& axis_direction) {
+  RootGeometry g;
+  g.axis_point = axis_point;
+  g.axis_direction = axis_direction.normalized();
+  std::vector<double> half_length(mesh.num_nodes(), 0.0);
+  const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
+  auto attached = [&](int i) { return !mesh.boundary.empty() && mesh.boundary[i] == BoundaryType::attached; };
+  for (const auto& e : topo.edges) {
+    if (e.tris[1] >= 0 || !attached(e.a) || !attached(e.b)) continue;
+    const double l = (mesh.points.row(e.a) - mesh.points.row(e.b)).norm();
+    half_length[e.a] += 0.5 * l;
+    half_length[e.b] += 0.5 * l;
+  }
+  double total = 0, lo = 1e300, hi = -1e300, radius = 0;
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    if (!attached(i)) continue;
+    g.nodes.push_back(i);
+    total += half_length[i];
+    const Vec3 p = mesh.points.row(i);
+    const double h = (p - g.axis_point).dot(g.axis_direction);
+    lo = std::min(lo, h), hi = std::max(hi, h);
+    radius += radius_from_axis(g, p);
+  }
+  if (g.nodes.empty() || total <= 0 || hi <= lo)
+    throw InputError("aortic_root: expected a mesh with attached boundary nodes (BoundaryType 1) spanning a height, found none");
+  g.mesh_radius = radius / g.nodes.size();
+  const double wall = 2 * kPi * g.mesh_radius * (hi - lo);
+  for (int i : g.nodes) g.wall_area.push_back(wall * half_length[i] / total);
+  return g;
+}
+
+RootSpringTerm::RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0)
+    : g_(g), r0_(r0) {
+  for (size_t k = 0; k < g_.nodes.size(); ++k) {
+    k_.push_back(E * t * g_.wall_area[k] / (g_.mesh_radius * r0));
+    rest_.push_back(points.row(g_.nodes[k]).transpose());
+    const Vec3 e = radial(g_, rest_.back()).e;
+    tangential_.push_back(Mat3::Identity() - e * e.transpose());
+  }
+}
+
+void RootSpringTerm::couplings(std::vector<std::pair<int, int>>&) const {}
+
+void RootSpringTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
+  for (size_t k = 0; k < g_.nodes.size(); ++k) {
+    const int i = g_.nodes[k];
+    // −E t (r − r0)/r0 · A_i/R = k_i r0 − k_i r
+    add_radial(g_, i, s.x, k_[k] * r0_, -k_[k], f, dfdx);
+    node3(f, i) -= k_[k] * tangential_[k] * (node3(s.x, i) - rest_[k]);
+    if (dfdx) dfdx->add(i, i, -k_[k] * tangential_[k]);
+  }
+}
+
+RootPressureTerm::RootPressureTerm(const RootGeometry& g, double pressure) : g_(g), pressure_(pressure) {}
+
+void RootPressureTerm::couplings(std::vector<std::pair<int, int>>&) const {}
+
+void RootPressureTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
+  for (size_t k = 0; k < g_.nodes.size(); ++k)
+    add_radial(g_, g_.nodes[k], s.x, 0.0, s.load * pressure_ * g_.wall_area[k] / g_.mesh_radius, f, dfdx);
+}
+
+}  // namespace valve

@@ -1,0 +1,69 @@
+#pragma once
+// The aortic root as an elastic tube acting on the leaflet attachment (seed 4.2.1).
+//
+// Each attached node i stands for a portion of a thin-walled tube (radius r, unloaded
+// radius r0, wall thickness t, Young's modulus E) of wall area A_i measured at the mesh
+// radius R. Its angular span times height is A_i / R, so the hoop stress σ = E (r − r0)/r0
+// pulls it toward the axis with σ t A_i / R and the pressure P pushes it out with P r A_i / R:
+//     f_i = (A_i / R) [P r − E t (r − r0) / r0] e_r                          (radial)
+// The spring (hoop) part is RootSpringTerm, the pressure part RootPressureTerm (an external
+// load, so load continuation ramps it and residuals are scaled by it). Without leaflets the
+// tube settles at r = r0 / (1 − P r0 / (E t)).
+// The wall also holds each node's axial and circumferential position with the hoop
+// stiffness k_i = E t A_i / (R r0), a linear spring in the plane normal to the rest radial
+// direction; otherwise the attachment could slide along the wall at no cost.
+// Jacobians: with q = (I − u uᵀ)(p − a), r = |q|, e_r = q / r and φ(r) the radial magnitude,
+//     df/dp = φ'(r) e_r e_rᵀ + φ(r) / r (I − u uᵀ − e_r e_rᵀ).
+#include <vector>
+
+#include "valve/mechanics/force_term.hpp"
+#include "valve/mesh/tri_mesh.hpp"
+
+namespace valve {
+
+struct RootGeometry {
+  Vec3 axis_point = Vec3::Zero();
+  Vec3 axis_direction = Vec3::UnitZ();  // unit
+  std::vector<int> nodes;               // attached nodes
+  std::vector<double> wall_area;        // A_i, mm²
+  double mesh_radius = 0;               // R, mm: mean radius of the attached nodes at rest
+};
+
+/// Attached nodes (BoundaryType attached) and their share of the root wall: the tube between
+/// the lowest and highest attached node, split in proportion to each node's half-length of
+/// attachment boundary edges. Throws InputError when the mesh has no attached node.
+RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Vec3& axis_direction);
+
+/// Radius of a point from the axis.
+double radius_from_axis(const RootGeometry& g, const Vec3& p);
+
+class RootSpringTerm final : public ForceTerm {
+ public:
+  /// `E` MPa, `t` mm, `r0` unloaded radius mm; rest positions from `points`.
+  RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0);
+  std::string name() const override { return "root_springs"; }
+  void couplings(std::vector<std::pair<int, int>>& pairs) const override;
+  void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
+
+ private:
+  RootGeometry g_;
+  std::vector<double> k_;    // hoop stiffness per node, N/mm
+  std::vector<Vec3> rest_;   // rest position
+  std::vector<Mat3> tangential_;  // I − e_r0 e_r0ᵀ at rest
+  double r0_;
+};
+
+class RootPressureTerm final : public ForceTerm {
+ public:
+  RootPressureTerm(const RootGeometry& g, double pressure);
+  std::string name() const override { return "root_pressure"; }
+  bool is_external_load() const override { return true; }
+  void couplings(std::vector<std::pair<int, int>>& pairs) const override;
+  void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
+
+ private:
+  RootGeometry g_;
+  double pressure_;
+};
+
+}  // namespace valve

@@ -1,0 +1,33 @@
+#pragma once
+// Broad phase of contact detection (seed 4.2.3): which (node, triangle) pairs are close
+// enough to be worth an exact test. Each triangle's axis-aligned bounding box is inflated
+// by a margin; a pair is a candidate when the node lies inside the inflated box.
+//
+// Two interchangeable methods give the same pairs (tests/mechanics check this):
+//  - sweep_and_prune: the seed's sorted list of boxes. Boxes are sorted by their lower x
+//    bound and swept against the nodes sorted by x, keeping the boxes that straddle the
+//    sweep line active. O((N + T) log T + active set); degrades when many boxes share an
+//    x range (a valve seen along its axis).
+//  - spatial_hash: a uniform grid whose cell is the mean inflated box size; each box is
+//    listed in the cells it overlaps, each node looks up its own cell. O(N + T) expected,
+//    insensitive to orientation. valve-bench measures both (`contact_broad_phase`).
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "valve/core/types.hpp"
+
+namespace valve {
+
+enum class BroadPhaseMethod { sweep_and_prune, spatial_hash };
+
+BroadPhaseMethod parse_broad_phase(const std::string& name);  // throws InputError
+std::string to_string(BroadPhaseMethod m);
+
+/// Candidate (node, triangle) pairs, sorted by node then triangle. `x` holds 3N positions;
+/// only nodes with `query[i]` true are tested (all when `query` is empty).
+std::vector<std::pair<int, int>> broad_phase_pairs(const VecX& x, const std::vector<Tri>& triangles,
+                                                   double margin, BroadPhaseMethod method,
+                                                   const std::vector<char>& query = {});
+
+}  // namespace valve

@@ -1,0 +1,289 @@
+// Coaptation analysis (seed 4.2.5) on hand-built parallel sheets whose overlap is known.
+//
+// Fixture: leaflet 0 is the sheet [0, 10] x [0, 10] (20 x 20 cells of 0.5 mm) in z = 0;
+// leaflet 1 is the sheet [0.25, 9.75] x [6.75, 10] (19 x 13 cells of 0.5 x 0.25 mm) in z = s,
+// wound the same way (normal +z), so that leaflet 0 is seen along +n and leaflet 1 along −n.
+// Both free edges are the top row y = 10. The top row of each
+// sheet is bent 0.05 mm towards the other sheet ("lips"), so that the rays from the free-edge
+// nodes tilt away from the other sheet's free edge and land 0.02-0.04 mm inside it instead of
+// exactly on its border, where a rotated copy could hit or miss by rounding. Every other
+// overlap border lies half a cell (0.25 mm) from the nodes of the sheet that casts the rays.
+#include <catch2/catch.hpp>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "valve/analysis/coaptation.hpp"
+#include "valve/core/error.hpp"
+
+using namespace valve;
+
+namespace {
+
+constexpr double kLip = 0.05;  // mm, the bend of each free-edge row towards the other sheet
+
+struct Sheet {
+  double x0, x1, y0, y1;
+  int nx, ny;
+  double z, lip_dz;  // plane height; z offset of the top row
+  int leaflet;
+  bool flip;  // wind with normal −z
+};
+
+// Structured sheet; top row = free edge (its two corners attached), rest of the border attached.
+void add_sheet(TriMesh& m, const Sheet& s) {
+  const int base = m.num_nodes();
+  const int cols = s.nx + 1, rows = s.ny + 1;
+  m.points.conservativeResize(base + cols * rows, 3);
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < cols; ++i) {
+      const int v = base + j * cols + i;
+      m.points.row(v) << s.x0 + (s.x1 - s.x0) * i / s.nx, s.y0 + (s.y1 - s.y0) * j / s.ny,
+          s.z + (j == s.ny ? s.lip_dz : 0.0);
+      const bool border = i == 0 || i == s.nx || j == 0 || j == s.ny;
+      const bool free = j == s.ny && i > 0 && i < s.nx;
+      m.boundary.push_back(free ? BoundaryType::free_edge : border ? BoundaryType::attached : BoundaryType::interior);
+    }
+  for (int j = 0; j < s.ny; ++j)
+    for (int i = 0; i < s.nx; ++i) {
+      const int a = base + j * cols + i, b = a + 1, c = a + cols + 1, d = a + cols;
+      for (Tri t : {Tri(a, b, c), Tri(a, c, d)}) {
+        if (s.flip) std::swap(t[1], t[2]);
+        m.triangles.push_back(t);
+        m.leaflet.push_back(s.leaflet);
+      }
+    }
+}
+
+Sheet lower_sheet() { return {0, 10, 0, 10, 20, 20, 0.0, kLip, 0, false}; }
+Sheet upper_sheet(double separation, double x0 = 0.25, double x1 = 9.75, int leaflet = 1, bool flip = false) {
+  return {x0, x1, 6.75, 10, static_cast<int>(std::lround((x1 - x0) / 0.5)), 13, separation, -kLip, leaflet, flip};
+}
+
+TriMesh overlap_pair(double separation) {
+  TriMesh m;
+  add_sheet(m, lower_sheet());
+  add_sheet(m, upper_sheet(separation));
+  m.fill_defaults();
+  return m;
+}
+
+// Node of the lower sheet (leaflet 0) at grid (i, j); the upper sheet's nodes follow its 21 x 21.
+int lower(int i, int j) { return j * 21 + i; }
+int upper(int i, int j) { return 21 * 21 + j * 20 + i; }
+
+void rigid_motion(TriMesh& m, const Mat3& R, const Vec3& t) {
+  for (int i = 0; i < m.num_nodes(); ++i) m.points.row(i) = (R * m.points.row(i).transpose() + t).transpose();
+}
+
+// Expected numbers for the pair at separation 0.3 mm, derived from the geometry.
+void check_overlap_pair(const CoaptationResult& r) {
+  REQUIRE(r.leaflets.size() == 2);
+  const LeafletCoaptation& l0 = r.leaflets[0];
+  const LeafletCoaptation& l1 = r.leaflets[1];
+  CHECK(l0.leaflet == 0);
+  CHECK(l1.leaflet == 1);
+
+  // Leaflet 0 coapts at the nodes over the upper sheet: columns x = 0.5..9.5, rows y = 7..10.
+  for (int j = 0; j <= 20; ++j)
+    for (int i = 0; i <= 20; ++i) {
+      INFO("lower node " << i << ", " << j);
+      CHECK(r.coapting[lower(i, j)] == (i >= 1 && i <= 19 && j >= 14 ? 1 : 0));
+    }
+  // ... and the upper sheet coapts everywhere (it lies wholly over the lower one).
+  for (int v = upper(0, 0); v <= upper(19, 13); ++v) CHECK(r.coapting[v] == 1);
+  // Flat part: the rays run along ±z, the gap is the separation.
+  CHECK(r.gap_mm[lower(10, 16)] == Approx(0.3).margin(1e-9));
+  CHECK(r.gap_mm[upper(10, 5)] == Approx(0.3).margin(1e-9));
+  CHECK(r.gap_mm[lower(10, 4)] == kCoaptationNoHit);  // y = 2: nothing above or below
+
+  // Area: overlap 9.5 x 3.25 mm. The overlap borders lie half a cell from the nodes, where the
+  // interpolated indicator integrates exactly over the border strips; the two corner cells
+  // of the lower sheet are off by at most h²/12 each (h = 0.5), and the lip strip is tilted
+  // (area factor sqrt(1 + (0.05/0.5)²), +0.024 mm²): tolerance 0.1 mm².
+  CHECK(l0.area_mm2 == Approx(9.5 * 3.25).margin(0.1));
+  // The upper sheet coapts wholly: its area, 9.5 x (3 + lip row length).
+  const double upper_depth = 3.0 + std::hypot(0.25, kLip);
+  CHECK(l1.area_mm2 == Approx(9.5 * upper_depth).epsilon(1e-9));
+
+  // Heights along grid columns: lower sheet, lip row sqrt(0.5² + 0.05²) plus 5 rows of 0.5
+  // down to y = 7 (the deepest row inside the 3.25 mm overlap); upper sheet, its full depth.
+  const double lower_height = 2.5 + std::hypot(0.5, kLip);
+  CHECK(std::abs(lower_height - 3.25) < 0.5);  // within one cell of the overlap depth
+  REQUIRE(l0.free_edge.size() == 21);
+  REQUIRE(l1.free_edge.size() == 20);
+  for (size_t k = 0; k < 21; ++k) {
+    INFO("lower free-edge node " << k);
+    CHECK(l0.height_mm[k] == Approx(k == 0 || k == 20 ? 0.0 : lower_height).margin(1e-9));
+  }
+  for (size_t k = 0; k < 20; ++k) CHECK(l1.height_mm[k] == Approx(upper_depth).margin(1e-9));
+  CHECK(l0.middle_node == lower(10, 20));
+  CHECK(l0.midline_height_mm == Approx(lower_height).margin(1e-9));
+  CHECK(l0.min_height_mm == Approx(lower_height).margin(1e-9));  // corners lie in the 1 mm margins
+  CHECK(l1.midline_height_mm == Approx(upper_depth).margin(1e-9));
+  CHECK(l1.min_height_mm == Approx(upper_depth).margin(1e-9));
+  CHECK(l0.coapting_fraction_of_free_edge == Approx(0.9));  // x in [0.5, 9.5] of [0, 10]
+  CHECK(l1.coapting_fraction_of_free_edge == Approx(1.0));
+  CHECK(l0.closed);
+  CHECK(l1.closed);
+  CHECK(r.closed);
+  CHECK_FALSE(r.central_gap);
+}
+
+}  // namespace
+
+TEST_CASE("coaptation: sheets 0.3 mm apart coapt over their overlap", "[analysis][coaptation]") {
+  const TriMesh m = overlap_pair(0.3);
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  check_overlap_pair(r);
+  for (double g : r.gap_mm) CHECK(std::isfinite(g));
+  CHECK_FALSE(r.report().empty());
+}
+
+TEST_CASE("coaptation: same numbers after a rigid motion", "[analysis][coaptation]") {
+  TriMesh m = overlap_pair(0.3);
+  const CoaptationResult ref = analyze_coaptation(m, flatten(m.points));
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix() *
+                 Eigen::AngleAxisd(-1.9, Vec3(0.3, -1, 0.2).normalized()).toRotationMatrix();
+  rigid_motion(m, R, Vec3(12.5, -40, 7.25));
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  check_overlap_pair(r);
+  REQUIRE(r.gap_mm.size() == ref.gap_mm.size());
+  for (size_t i = 0; i < r.gap_mm.size(); ++i) {
+    CHECK(r.gap_mm[i] == Approx(ref.gap_mm[i]).margin(1e-9));
+    CHECK(r.coapting[i] == ref.coapting[i]);
+  }
+  for (size_t l = 0; l < 2; ++l) {
+    CHECK(r.leaflets[l].area_mm2 == Approx(ref.leaflets[l].area_mm2).epsilon(1e-12));
+    CHECK(r.leaflets[l].min_height_mm == Approx(ref.leaflets[l].min_height_mm).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("coaptation: sheets 0.8 mm apart do not coapt", "[analysis][coaptation]") {
+  const TriMesh m = overlap_pair(0.8);
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  for (int c : r.coapting) CHECK(c == 0);
+  CHECK(r.gap_mm[lower(10, 16)] == Approx(0.8).margin(1e-9));  // seen, but beyond 0.5 mm
+  CHECK(r.gap_mm[upper(10, 5)] == Approx(0.8).margin(1e-9));
+  for (const auto& l : r.leaflets) {
+    CHECK(l.area_mm2 == 0);
+    CHECK(l.midline_height_mm == 0);
+    CHECK(l.min_height_mm == 0);
+    CHECK(l.coapting_fraction_of_free_edge == 0);
+    CHECK_FALSE(l.closed);
+  }
+  CHECK_FALSE(r.closed);
+  CHECK(r.central_gap);
+  // A larger threshold makes the same flat overlap coapt again.
+  CoaptationOptions wide;
+  wide.threshold_mm = 0.85;
+  CHECK(analyze_coaptation(m, flatten(m.points), wide).closed);
+}
+
+TEST_CASE("coaptation: a neighbour too narrow leaves a central gap", "[analysis][coaptation]") {
+  // Two narrow leaflets over x in [0.25, 3.75] and [6.25, 9.75]: the middle of leaflet 0's
+  // free edge (x = 4..6) has nothing to meet. Leaflet 2 is wound the other way (normal −z).
+  TriMesh m;
+  add_sheet(m, lower_sheet());
+  add_sheet(m, upper_sheet(0.3, 0.25, 3.75, 1));
+  add_sheet(m, upper_sheet(0.3, 6.25, 9.75, 2, true));
+  m.fill_defaults();
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  REQUIRE(r.leaflets.size() == 3);
+  const LeafletCoaptation& l0 = r.leaflets[0];
+  const double lower_height = 2.5 + std::hypot(0.5, kLip);
+  for (int i = 0; i <= 20; ++i) {
+    const bool covered = (i >= 1 && i <= 7) || (i >= 13 && i <= 19);
+    INFO("free-edge node " << i);
+    CHECK(r.coapting[lower(i, 20)] == (covered ? 1 : 0));
+    CHECK(l0.height_mm[i] == Approx(covered ? lower_height : 0.0).margin(1e-9));
+  }
+  CHECK(l0.midline_height_mm == 0);
+  CHECK(l0.min_height_mm == 0);
+  CHECK(l0.coapting_fraction_of_free_edge == Approx(0.6));  // [0.5, 3.5] and [6.5, 9.5]
+  CHECK_FALSE(l0.closed);
+  CHECK(r.leaflets[1].closed);
+  CHECK(r.leaflets[2].closed);
+  CHECK(r.central_gap);
+  CHECK_FALSE(r.closed);
+}
+
+TEST_CASE("coaptation: contact not connected to the free edge adds area but no height", "[analysis][coaptation]") {
+  // A third leaflet touches leaflet 0 lower down, over [0.25, 9.75] x [1.25, 3.75]
+  // (a belly contact); rows y = 4..6.5 of leaflet 0 do not coapt and separate it from the strip.
+  TriMesh m;
+  add_sheet(m, lower_sheet());
+  add_sheet(m, upper_sheet(0.3));
+  add_sheet(m, {0.25, 9.75, 1.25, 3.75, 19, 10, 0.3, 0.0, 2, false});
+  m.fill_defaults();
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  for (int i = 1; i <= 19; ++i) {
+    CHECK(r.coapting[lower(i, 5)] == 1);  // y = 2.5, in the lower patch
+    CHECK(r.coapting[lower(i, 10)] == 0);  // y = 5, between the patches
+  }
+  const LeafletCoaptation& l0 = r.leaflets[0];
+  // Heights as without the patch (its nodes are 6.5-8.5 mm from the free edge).
+  CHECK(l0.min_height_mm == Approx(2.5 + std::hypot(0.5, kLip)).margin(1e-9));
+  CHECK(l0.midline_height_mm == Approx(2.5 + std::hypot(0.5, kLip)).margin(1e-9));
+  // Area: both overlaps; six corner cells off by at most h²/12 each plus the lip tilt.
+  CHECK(l0.area_mm2 == Approx(9.5 * 3.25 + 9.5 * 2.5).margin(0.15));
+  CHECK(r.closed);
+}
+
+TEST_CASE("coaptation: the commissure margin excludes the free-edge ends", "[analysis][coaptation]") {
+  const TriMesh m = overlap_pair(0.3);
+  CoaptationOptions o;
+  o.commissure_margin = 0;  // the lower sheet's corners (x = 0, 10) do not coapt
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points), o);
+  CHECK(r.leaflets[0].min_height_mm == 0);
+  CHECK_FALSE(r.leaflets[0].closed);
+  CHECK(r.leaflets[1].min_height_mm == Approx(3.0 + std::hypot(0.25, kLip)).margin(1e-9));
+  o.commissure_margin = 0.049;  // 0.49 mm: excludes x = 0 but keeps x = 0.5
+  CHECK(analyze_coaptation(m, flatten(m.points), o).leaflets[0].min_height_mm ==
+        Approx(2.5 + std::hypot(0.5, kLip)).margin(1e-9));
+}
+
+TEST_CASE("coaptation: a node shared by two leaflets has gap 0 and no height", "[analysis][coaptation]") {
+  // Two coplanar triangles meeting at node 0 (a commissure corner): no ray from the others
+  // hits the other leaflet.
+  TriMesh m;
+  m.points.resize(5, 3);
+  m.points << 0, 0, 0, 1, 0, 0, 0, 1, 0, -1, 0, 0, 0, -1, 0;
+  m.triangles = {Tri(0, 1, 2), Tri(0, 3, 4)};
+  m.leaflet = {0, 1};
+  m.boundary = {BoundaryType::attached, BoundaryType::free_edge, BoundaryType::attached, BoundaryType::free_edge,
+                BoundaryType::attached};
+  m.fill_defaults();
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  CHECK(r.gap_mm == std::vector<double>{0, kCoaptationNoHit, kCoaptationNoHit, kCoaptationNoHit, kCoaptationNoHit});
+  CHECK(r.coapting == std::vector<int>{1, 0, 0, 0, 0});
+  // One coapting node of three: a third of the triangle's area (0.5 mm²).
+  CHECK(r.leaflets[0].area_mm2 == Approx(0.5 / 3));
+  for (double h : r.leaflets[0].height_mm) CHECK(h == 0);
+  CHECK_FALSE(r.closed);
+}
+
+TEST_CASE("coaptation: invalid options and inputs throw InputError", "[analysis][coaptation]") {
+  const double nan = std::nan("");
+  for (double t : {0.0, -0.5, nan, HUGE_VAL}) {
+    CoaptationOptions o;
+    o.threshold_mm = t;
+    CHECK_THROWS_AS(o.validate(), InputError);
+  }
+  for (double margin : {-0.01, 0.5, 0.7, nan}) {
+    CoaptationOptions o;
+    o.commissure_margin = margin;
+    CHECK_THROWS_AS(o.validate(), InputError);
+  }
+  CoaptationOptions ok;
+  ok.commissure_margin = 0;
+  CHECK_NOTHROW(ok.validate());
+
+  const TriMesh m = overlap_pair(0.3);
+  CoaptationOptions bad;
+  bad.threshold_mm = -1;
+  CHECK_THROWS_AS(analyze_coaptation(m, flatten(m.points), bad), InputError);
+  CHECK_THROWS_AS(analyze_coaptation(m, VecX::Zero(6)), InputError);
+  VecX x = flatten(m.points);
+  x[7] = nan;
+  CHECK_THROWS_AS(analyze_coaptation(m, x), InputError);
+}

@@ -1,0 +1,208 @@
+// Contact (seed 4.2.3, Eq. 4.5), its broad phase, and the aortic root springs (4.2.1):
+// finite-difference Jacobians, the force law against its formula, the side memory, and the
+// elastic tube's equilibrium radius.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "support/test_meshes.hpp"
+#include "valve/core/error.hpp"
+#include "valve/core/units.hpp"
+#include "valve/mechanics/aortic_root.hpp"
+#include "valve/mechanics/broad_phase.hpp"
+#include "valve/mechanics/contact.hpp"
+#include "valve/mechanics/nodal_load.hpp"
+
+using namespace valve;
+using namespace valve::test;
+
+namespace {
+
+// Leaflet 0: a triangle in the z = 0 plane (normal +z). Leaflet 1: a triangle with node 3
+// above the first one at height h, nodes 4 and 5 far outside its footprint.
+TriMesh two_sheets(double h) {
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0,  //
+      0.5, 0.5, h, 5, 0.5, h + 0.3, 0.5, 5, h + 0.2;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  return m;
+}
+
+VecX push_down(int nodes, int node, double force) {
+  VecX f = VecX::Zero(3 * nodes);
+  f[3 * node + 2] = -force;
+  return f;
+}
+
+Vec3 contact_force(const ContactTerm& c, const VecX& x) {
+  VecX f = VecX::Zero(x.size());
+  c.add(State{x, VecX::Zero(x.size()), 1.0, 0}, f, nullptr, nullptr);
+  return node3(f, 3);
+}
+
+}  // namespace
+
+TEST_CASE("contact force follows Eq. 4.5 with the zone taper and the penetration penalty", "[mechanics][contact]") {
+  const double F = 0.02, k = 0.01, kp = 1.0, z = 0.1;
+  ContactOptions opt;
+  opt.stiffness = k, opt.penetration_stiffness = kp, opt.zone = z;
+  const TriMesh m = two_sheets(0.5);
+  NodalLoadTerm load(push_down(6, 3, F));
+  ContactTerm c(m, opt, {&load}, std::vector<char>(18, 0));
+  VecX x = flatten(m.points);
+  c.update_couplings(x);  // node 3 is 0.5 mm above: inside the detection slab, side +1
+  for (double d : {0.0, 0.03, 0.07, 0.099, 0.12, -0.02, -0.08}) {
+    VecX y = x;
+    y[3 * 3 + 2] = d;
+    const double u = d / z;
+    const double expected = d >= z ? 0.0 : (d >= 0 ? F * std::exp(-k * d / F) * (1 - 3 * u * u + 2 * u * u * u) : F - kp * d);
+    INFO("d = " << d);
+    const Vec3 fc = contact_force(c, y);
+    CHECK(fc.z() == Approx(expected).margin(1e-12));
+    CHECK(fc.head<2>().norm() < 1e-15);
+  }
+}
+
+TEST_CASE("contact pushes a node back to the side it came from", "[mechanics][contact]") {
+  const TriMesh m = two_sheets(0.5);
+  NodalLoadTerm load(push_down(6, 3, 0.02));
+  ContactTerm c(m, ContactOptions{}, {&load}, std::vector<char>(18, 0));
+  VecX x = flatten(m.points);
+  c.update_couplings(x);
+  x[3 * 3 + 2] = -0.05;  // pushed through within one step
+  c.update_couplings(x);  // the pair keeps the side it entered with
+  CHECK(contact_force(c, x).z() > 0.02);
+  // The same node arriving from below is pushed down.
+  TriMesh below = two_sheets(-0.5);
+  NodalLoadTerm up(-push_down(6, 3, 0.02));
+  ContactTerm c2(below, ContactOptions{}, {&up}, std::vector<char>(18, 0));
+  VecX y = flatten(below.points);
+  c2.update_couplings(y);
+  y[3 * 3 + 2] = 0.05;
+  CHECK(contact_force(c2, y).z() < -0.02);
+}
+
+TEST_CASE("contact Jacobian matches finite differences (tilted triangle, all regimes)", "[mechanics][contact][fd]") {
+  for (double h : {0.04, 0.08, -0.03}) {
+    TriMesh m = two_sheets(0.5);
+    // Tilt and rotate everything so that no derivative is trivially zero.
+    const Mat3 R = Eigen::AngleAxisd(0.4, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+    NodalLoadTerm load(push_down(6, 3, 0.02));
+    ContactTerm c(m, ContactOptions{}, {&load}, std::vector<char>(18, 0));
+    VecX x = flatten(m.points);
+    c.update_couplings(x);
+    x[3 * 3 + 2] = h;
+    x[3 * 1 + 2] = 0.05;  // a non-planar-to-axes triangle
+    for (int i = 0; i < 6; ++i) node3(x, i) = R * node3(x, i);
+    // The load stays along −z of the unrotated frame; F then depends on the normal too.
+    const VecX v = VecX::Zero(x.size());
+    const auto num = numeric_dfdx(c, x, v, 1.0, 1e-7);
+    const auto ana = analytic_dfdx(c, m.num_nodes(), x, v, 1.0);
+    INFO("h = " << h);
+    CHECK(num.cwiseAbs().maxCoeff() > 0);
+    CHECK(relative_difference(ana, num) < 1e-5);
+  }
+}
+
+TEST_CASE("contact ignores its own triangles' 1-ring, constrained nodes and disabled kinds", "[mechanics][contact]") {
+  const TriMesh m = two_sheets(0.05);
+  NodalLoadTerm load(push_down(6, 3, 0.02));
+  VecX x = flatten(m.points);
+  std::vector<char> fixed(18, 0);
+  fixed[9] = fixed[10] = fixed[11] = 1;
+  ContactTerm c_fixed(m, ContactOptions{}, {&load}, fixed);
+  c_fixed.update_couplings(x);
+  CHECK(contact_force(c_fixed, x).norm() == 0);
+  ContactOptions self_only;
+  self_only.between_leaflets = false;
+  ContactTerm c_self(m, self_only, {&load}, std::vector<char>(18, 0));
+  c_self.update_couplings(x);
+  CHECK(contact_force(c_self, x).norm() == 0);
+  ContactOptions bad;
+  bad.zone = 0;
+  CHECK_THROWS_AS(bad.validate(), InputError);
+}
+
+TEST_CASE("both broad phases find exactly the brute-force pairs", "[mechanics][contact]") {
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> u(-5, 5);
+  const int nodes = 400;
+  VecX x(3 * nodes);
+  for (int i = 0; i < x.size(); ++i) x[i] = u(gen);
+  std::vector<Tri> tris;
+  for (int t = 0; t < 300; ++t) {
+    const int a = gen() % nodes;
+    tris.emplace_back(a, (a + 1 + gen() % 5) % nodes, (a + 7 + gen() % 5) % nodes);
+  }
+  const double margin = 0.3;
+  std::vector<std::pair<int, int>> brute;
+  for (int i = 0; i < nodes; ++i)
+    for (int t = 0; t < static_cast<int>(tris.size()); ++t) {
+      Vec3 lo = node3(x, tris[t][0]), hi = lo;
+      for (int k = 1; k < 3; ++k) lo = lo.cwiseMin(Vec3(node3(x, tris[t][k]))), hi = hi.cwiseMax(Vec3(node3(x, tris[t][k])));
+      const Vec3 p = node3(x, i);
+      if ((p.array() >= lo.array() - margin).all() && (p.array() <= hi.array() + margin).all()) brute.emplace_back(i, t);
+    }
+  REQUIRE(brute.size() > 100);
+  CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::sweep_and_prune) == brute);
+  CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::spatial_hash) == brute);
+  std::vector<char> query(nodes, 0);
+  for (int i = 0; i < nodes; i += 3) query[i] = 1;
+  const auto some = broad_phase_pairs(x, tris, margin, BroadPhaseMethod::spatial_hash, query);
+  for (const auto& [i, t] : some) CHECK(i % 3 == 0);
+  CHECK(some == broad_phase_pairs(x, tris, margin, BroadPhaseMethod::sweep_and_prune, query));
+}
+
+namespace {
+// A ring of attached nodes (radius 10, two rows) joined into a band of triangles.
+TriMesh root_band(int n = 24) {
+  TriMesh m;
+  m.points.resize(2 * n, 3);
+  for (int k = 0; k < n; ++k)
+    for (int row = 0; row < 2; ++row) {
+      const double a = 2 * 3.14159265358979 * k / n;
+      m.points.row(2 * k + row) << 10 * std::cos(a), 10 * std::sin(a), 3.0 * row;
+    }
+  for (int k = 0; k < n; ++k) {
+    const int a = 2 * k, b = 2 * ((k + 1) % n);
+    m.triangles.emplace_back(a, b, b + 1);
+    m.triangles.emplace_back(a, b + 1, a + 1);
+  }
+  m.fill_defaults();
+  // Both rims are boundary loops through every node: all nodes are attached.
+  m.boundary.assign(m.num_nodes(), BoundaryType::attached);
+  return m;
+}
+}  // namespace
+
+TEST_CASE("root springs and pressure balance at the elastic tube's radius", "[mechanics][root]") {
+  const TriMesh m = root_band();
+  const RootGeometry g = root_geometry(m, Vec3::Zero(), Vec3::UnitZ());
+  CHECK(g.mesh_radius == Approx(10));
+  double area = 0;
+  for (double a : g.wall_area) area += a;
+  CHECK(area == Approx(2 * 3.14159265358979 * 10 * 3.0));
+  const double E = 0.4, t = 1.6, r0 = 10 / 1.15, P = 80 * units::mmHg;
+  RootSpringTerm springs(g, m.points, E, t, r0);
+  RootPressureTerm pressure(g, P);
+  const double r_eq = r0 / (1 - P * r0 / (E * t));
+  VecX x = flatten(m.points) * (r_eq / 10);
+  for (int i = 0; i < m.num_nodes(); ++i) x[3 * i + 2] = m.points(i, 2);  // axial positions unchanged
+  VecX f = VecX::Zero(x.size());
+  const VecX v = VecX::Zero(x.size());
+  springs.add(State{x, v, 1.0, 0}, f, nullptr, nullptr);
+  VecX fp = VecX::Zero(x.size());
+  pressure.add(State{x, v, 1.0, 0}, fp, nullptr, nullptr);
+  CHECK(fp.norm() > 0.01);
+  CHECK((f + fp).norm() < 1e-9 * fp.norm());
+  // Jacobians at a generic state.
+  VecX y = perturbed(m, 0.3);
+  for (const ForceTerm* term : {static_cast<const ForceTerm*>(&springs), static_cast<const ForceTerm*>(&pressure)}) {
+    INFO(term->name());
+    CHECK(relative_difference(analytic_dfdx(*term, m.num_nodes(), y, v, 1.0), numeric_dfdx(*term, y, v, 1.0, 1e-6)) < 1e-6);
+  }
+}
