@@ -70,7 +70,9 @@ TEST_CASE("contact force follows Eq. 4.5 with the zone taper and the penetration
 TEST_CASE("contact pushes a node back to the side it came from", "[mechanics][contact]") {
   const TriMesh m = two_sheets(0.5);
   NodalLoadTerm load(push_down(6, 3, 0.02));
-  ContactTerm c(m, ContactOptions{}, {&load}, std::vector<char>(18, 0));
+  ContactOptions memory;
+  memory.normal_side_between_leaflets = false;
+  ContactTerm c(m, memory, {&load}, std::vector<char>(18, 0));
   VecX x = flatten(m.points);
   c.update_couplings(x);
   x[3 * 3 + 2] = -0.05;  // pushed through within one step
@@ -79,11 +81,18 @@ TEST_CASE("contact pushes a node back to the side it came from", "[mechanics][co
   // The same node arriving from below is pushed down.
   TriMesh below = two_sheets(-0.5);
   NodalLoadTerm up(-push_down(6, 3, 0.02));
-  ContactTerm c2(below, ContactOptions{}, {&up}, std::vector<char>(18, 0));
+  ContactTerm c2(below, memory, {&up}, std::vector<char>(18, 0));
   VecX y = flatten(below.points);
   c2.update_couplings(y);
   y[3 * 3 + 2] = 0.05;
   CHECK(contact_force(c2, y).z() < -0.02);
+  // The seed's rule between leaflets: the front is where the normal points, whatever the
+  // history: the node below is pushed up to the front.
+  ContactTerm c3(below, ContactOptions{}, {&up}, std::vector<char>(18, 0));
+  VecX z = flatten(below.points);
+  z[3 * 3 + 2] = -0.05;
+  c3.update_couplings(z);
+  CHECK(contact_force(c3, z).z() == Approx(0.01 * 0.05).margin(1e-12));  // k_p |d|; the load pushes away, F = 0
 }
 
 TEST_CASE("contact Jacobian matches finite differences (tilted triangle, all regimes)", "[mechanics][contact][fd]") {

@@ -114,6 +114,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     co.zone = c.quantity("zone", Dimension::length, std::string("0.1 mm"), 1e-9, 1e3);
     co.between_leaflets = c.boolean("between_leaflets", true);
     co.self_contact = c.boolean("self", true);
+    co.normal_side_between_leaflets = c.choice("side_between_leaflets", {"normal", "memory"}, std::string("normal")) == "normal";
     co.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
     co.broad_phase = parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
     if (co.detection != 0 && co.detection <= co.zone) c.fail("detection", "0 (automatic) or more than zone", std::to_string(co.detection) + " mm");

@@ -111,7 +111,9 @@ bool ContactTerm::update_couplings(const VecX& x) {
                                 [](const Candidate& c, const std::pair<int, int>& key) {
                                   return std::make_pair(c.node, c.triangle) < key;
                                 });
-    const int side = (old != candidates_.end() && old->node == i && old->triangle == t) ? old->side : 0;
+    int side = (old != candidates_.end() && old->node == i && old->triangle == t) ? old->side : 0;
+    const bool own = std::binary_search(node_leaflets_[i].begin(), node_leaflets_[i].end(), leaflet_[t]);
+    if (opt_.normal_side_between_leaflets && !own) side = 1;
     next.push_back({i, t, side});
     geom.push_back(g);
   }

@@ -22,7 +22,10 @@
 // coapting node balances its own pressure. Per node and per neighbouring leaflet only the
 // nearest triangle in front acts, so a node over a shared edge is not pushed twice.
 //
-// The side s of each (node, triangle) pair is fixed when the pair enters the candidate
+// Between leaflets the seed's rule applies by default: s = +1, the side the normal points
+// to (the ventricular faces coapt), so a free edge that slips past a neighbour's is pushed
+// back to the front. Otherwise (self-contact, or the option off) the side s of each
+// (node, triangle) pair is fixed when the pair enters the candidate
 // set (|d| below the detection distance) and kept while it stays there, so a node pushed
 // slightly through a sheet is pushed back, not across. Solvers keep each step below
 // max_step_length() so that no node can cross the detection slab unseen.
@@ -48,6 +51,9 @@ struct ContactOptions {
   double zone = 0.1;        // mm
   bool between_leaflets = true;
   bool self_contact = true;
+  /// Seed: between leaflets, "in front" is always the side the normal points to (the
+  /// ventricular faces coapt). Off: each pair keeps the side the node came from.
+  bool normal_side_between_leaflets = true;
   /// Candidate pairs are kept within this distance of a triangle (0: zone + mean edge length).
   double detection = 0;
   BroadPhaseMethod broad_phase = BroadPhaseMethod::spatial_hash;
