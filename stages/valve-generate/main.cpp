@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
       throw InputError("valve-generate: KIND: expected square_patch|aortic_leaflet|three_leaflet_valve|aortic_valve, found \"" + kind + "\"");
     const fs::path out = cl.require("out");
     const bool valve = kind == "three_leaflet_valve" || kind == "aortic_valve";
-    const int default_triangles = kind == "square_patch" ? 229 : (kind == "aortic_leaflet" ? 221 : (valve ? 663 : 660));
+    const int default_triangles = kind == "square_patch" ? 229 : (kind == "aortic_leaflet" ? 221 : 663);
     const int triangles = static_cast<int>(parse_number(cl, "triangles", default_triangles, 2, 5e6));
     const auto seed = static_cast<std::uint64_t>(parse_number(cl, "seed", 1, 0, 1e15));
     const int count = static_cast<int>(parse_number(cl, "count", 1, 1, 10000));

@@ -143,15 +143,9 @@ int main(int argc, char** argv) {
       laws.push_back(std::make_unique<MembraneFETerm>(mesh, scene.material.law(), scene.thickness));
       for (const auto& lm : scene.leaflet_materials)
         laws.push_back(std::make_unique<MembraneFETerm>(mesh, lm.material.law(), lm.thickness));
+      const std::vector<int> group = material_groups(scene, mesh);
       Eigen::MatrixXd S(mesh.num_triangles(), 3);
-      for (int t = 0; t < mesh.num_triangles(); ++t) {
-        size_t group = 0;
-        for (size_t g = 0; g < scene.leaflet_materials.size(); ++g) {
-          const auto& ls = scene.leaflet_materials[g].leaflets;
-          if (std::find(ls.begin(), ls.end(), mesh.leaflet[t]) != ls.end()) group = g + 1;
-        }
-        S.row(t) = laws[group]->stress(res.x, t).transpose();
-      }
+      for (int t = 0; t < mesh.num_triangles(); ++t) S.row(t) = laws[group[t]]->stress(res.x, t).transpose();
       arrays.push_back({"PK2Stress", S, true});
     }
     // Coaptation (seed 4.2.5) wherever leaflets can meet: a mesh of several leaflets.

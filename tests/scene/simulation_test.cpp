@@ -91,3 +91,26 @@ TEST_CASE("static and dynamic solvers agree on the loaded aortic leaflet", "[sce
     CHECK(b.summary.linear.factorizations < 300);
   }
 }
+
+TEST_CASE("leaflet_materials: one material group per triangle, clear errors otherwise", "[scene]") {
+  AorticValveOptions o;
+  o.mesh.target_triangles = 60;
+  const TriMesh mesh = generate_aortic_valve(o);
+  auto scene = [](const json& groups) {
+    return parse_scene({{"mesh", "unused.vtp"}, {"model", "mass_spring"}, {"material", "aortic_leaflet"}, {"leaflet_materials", groups}},
+                       "s.json", ".");
+  };
+  const SceneConfig sc = scene(json::array({{{"leaflets", {2}}, {"material", "pericardium_surrogate"}}}));
+  const std::vector<int> group = material_groups(sc, mesh);
+  for (int t = 0; t < mesh.num_triangles(); ++t) CHECK(group[t] == (mesh.leaflet[t] == 2 ? 1 : 0));
+  // Two membrane terms: the scene's material and the graft group.
+  const auto sys = build_system(sc, mesh);
+  int membrane_terms = 0;
+  for (const auto& t : sys->terms()) membrane_terms += t->name() == "mass_spring";
+  CHECK(membrane_terms == 2);
+  const SceneConfig twice = scene(json::array({{{"leaflets", {1}}, {"material", "pericardium_surrogate"}},
+                                               {{"leaflets", {1}}, {"material", "mitral_leaflet"}}}));
+  CHECK_THROWS_WITH(material_groups(twice, mesh), Catch::Contains("leaflet_materials[1].leaflets") && Catch::Contains("listed twice"));
+  const SceneConfig absent = scene(json::array({{{"leaflets", {7}}, {"material", "pericardium_surrogate"}}}));
+  CHECK_THROWS_WITH(build_system(absent, mesh), Catch::Contains("leaflet_materials[0].leaflets"));
+}

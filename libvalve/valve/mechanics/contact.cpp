@@ -12,7 +12,6 @@
 namespace valve {
 namespace {
 
-
 /// Where a node sits relative to a triangle's plane.
 struct PlaneGeometry {
   Vec3 n;            // unit winding normal
@@ -142,16 +141,9 @@ bool ContactTerm::update_couplings(const VecX& x) {
   candidates_ = std::move(next);
   std::vector<std::pair<int, int>> coupled;
   coupled.reserve(3 * candidates_.size());
-  // Only pairs that one step can bring into the zone enter the Jacobian pattern: the
-  // rest would only add fill to every factorization.
-  const double near = detection_;
-  for (size_t c_index = 0; c_index < candidates_.size(); ++c_index) {
-    const Candidate& c = candidates_[c_index];
-    if (std::abs(geom[c_index].d) > near) continue;
-    candidates_[c_index].in_pattern = true;
-    for (int k = 0; k < 3; ++k) coupled.emplace_back(std::min(c.node, triangles_[c.triangle][k]),
-                                                     std::max(c.node, triangles_[c.triangle][k]));
-  }
+  for (const Candidate& c : candidates_)
+    for (int k = 0; k < 3; ++k)
+      coupled.emplace_back(std::min(c.node, triangles_[c.triangle][k]), std::max(c.node, triangles_[c.triangle][k]));
   std::sort(coupled.begin(), coupled.end());
   coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
   ++stats_.candidate_updates;
@@ -177,6 +169,7 @@ void ContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobia
     int leaflet;
     size_t index;
     double d;
+    PlaneGeometry geometry;
   };
   std::vector<Chosen> chosen;
   for (size_t a = 0; a < candidates_.size();) {
@@ -194,13 +187,13 @@ void ContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobia
       if (g.area2 <= 0 || d >= z || g.barycentric.minCoeff() < opt_.inside_tolerance) continue;
       const int l = leaflet_[cand.triangle];
       auto it = std::find_if(chosen.begin(), chosen.end(), [l](const Chosen& ch) { return ch.leaflet == l; });
-      if (it == chosen.end()) chosen.push_back({l, c, d});
-      else if (d < it->d) *it = {l, c, d};
+      if (it == chosen.end()) chosen.push_back({l, c, d, g});
+      else if (d < it->d) *it = {l, c, d, g};
     }
     for (const Chosen& ch : chosen) {
       const Candidate& cand = candidates_[ch.index];
       const Tri& t = triangles_[cand.triangle];
-      const PlaneGeometry geo = plane_geometry(s.x, t, p);
+      const PlaneGeometry& geo = ch.geometry;
       const Vec3 m = cand.side * geo.n;
       const Vec3 fe = node3(fext, i);
       const double d = ch.d;
@@ -219,7 +212,7 @@ void ContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobia
       ++stats_.active_pairs;
       stats_.deepest_penetration = std::max(stats_.deepest_penetration, -d);
       node3(f, i) += g * m;
-      if (!dfdx || !cand.in_pattern) continue;
+      if (!dfdx) continue;
       if (F == 0) g_F = 0;
       const Vec3 xa = node3(s.x, t[0]), e1 = node3(s.x, t[1]) - xa, e2 = node3(s.x, t[2]) - xa;
       const Vec3 r = p - xa;

@@ -90,7 +90,6 @@ class ContactTerm final : public ForceTerm {
   struct Candidate {
     int node, triangle;
     int side;  // +1, −1, or 0 while undecided (|d| too small to tell)
-    bool in_pattern = false;  // its Jacobian blocks are in the pattern (else forces only)
   };
   bool excluded(int node, int triangle) const;
 

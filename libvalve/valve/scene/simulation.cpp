@@ -26,7 +26,6 @@ TriMesh triangle_subset(const TriMesh& m, const std::vector<char>& keep) {
   TriMesh sub = m;
   sub.triangles.clear();
   sub.leaflet.clear();
-  sub.fiber.resize(0, 3);
   std::vector<int> kept;
   for (int t = 0; t < m.num_triangles(); ++t)
     if (keep[t]) kept.push_back(t);
@@ -50,32 +49,40 @@ void add_material_term(const SceneConfig& sc, const TriMesh& m, const MaterialCo
 
 }  // namespace
 
+std::vector<int> material_groups(const SceneConfig& sc, const TriMesh& m) {
+  std::vector<int> group(m.num_triangles(), 0);
+  for (size_t g = 0; g < sc.leaflet_materials.size(); ++g) {
+    const auto& leaflets = sc.leaflet_materials[g].leaflets;
+    const std::string key = "leaflet_materials[" + std::to_string(g) + "].leaflets";
+    int count = 0;
+    for (int t = 0; t < m.num_triangles(); ++t) {
+      if (std::find(leaflets.begin(), leaflets.end(), m.leaflet[t]) == leaflets.end()) continue;
+      if (group[t] != 0)
+        throw_input_error(sc.file.string(), key, "each leaflet in one group", "leaflet " + std::to_string(m.leaflet[t]) + " listed twice");
+      group[t] = static_cast<int>(g) + 1;
+      ++count;
+    }
+    if (count == 0)
+      throw_input_error(sc.file.string(), key, "leaflet indices present in the mesh's Leaflet array", describe_json(json(leaflets)));
+  }
+  return group;
+}
+
 void add_material_terms(const SceneConfig& sc, const TriMesh& m, MechanicalSystem& sys) {
   if (sc.leaflet_materials.empty()) {
     add_material_term(sc, m, sc.material, sc.thickness, sys);
     return;
   }
-  std::vector<char> claimed(m.num_triangles(), 0);
-  for (size_t g = 0; g < sc.leaflet_materials.size(); ++g) {
-    const auto& lm = sc.leaflet_materials[g];
-    std::vector<char> keep(m.num_triangles(), 0);
-    int count = 0;
-    for (int t = 0; t < m.num_triangles(); ++t)
-      if (std::find(lm.leaflets.begin(), lm.leaflets.end(), m.leaflet[t]) != lm.leaflets.end()) {
-        if (claimed[t])
-          throw_input_error(sc.file.string(), "leaflet_materials[" + std::to_string(g) + "].leaflets",
-                            "each leaflet in one group", "leaflet " + std::to_string(m.leaflet[t]) + " listed twice");
-        keep[t] = claimed[t] = 1;
-        ++count;
-      }
-    if (count == 0)
-      throw_input_error(sc.file.string(), "leaflet_materials[" + std::to_string(g) + "].leaflets",
-                        "leaflet indices present in the mesh's Leaflet array", describe_json(json(lm.leaflets)));
-    add_material_term(sc, triangle_subset(m, keep), lm.material, lm.thickness, sys);
+  const std::vector<int> group = material_groups(sc, m);
+  for (size_t g = 0; g <= sc.leaflet_materials.size(); ++g) {
+    std::vector<char> keep(m.num_triangles());
+    for (int t = 0; t < m.num_triangles(); ++t) keep[t] = group[t] == static_cast<int>(g);
+    const TriMesh subset = triangle_subset(m, keep);
+    if (g == 0)
+      add_material_term(sc, subset, sc.material, sc.thickness, sys);
+    else
+      add_material_term(sc, subset, sc.leaflet_materials[g - 1].material, sc.leaflet_materials[g - 1].thickness, sys);
   }
-  std::vector<char> rest(m.num_triangles());
-  for (int t = 0; t < m.num_triangles(); ++t) rest[t] = !claimed[t];
-  add_material_term(sc, triangle_subset(m, rest), sc.material, sc.thickness, sys);
 }
 
 std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriMesh& mesh) {

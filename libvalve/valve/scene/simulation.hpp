@@ -17,6 +17,10 @@ namespace valve {
 /// leaves the model unconstrained or names nodes the mesh does not have.
 std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& scene, const TriMesh& mesh);
 
+/// Which material each triangle takes: 0 for the scene's, g + 1 for leaflet_materials[g].
+/// Throws InputError when a leaflet is in two groups or a group names no leaflet of the mesh.
+std::vector<int> material_groups(const SceneConfig& scene, const TriMesh& mesh);
+
 /// The membrane terms of a scene: one per material group (leaflet_materials), the scene's
 /// material for the leaflets no group claims.
 void add_material_terms(const SceneConfig& scene, const TriMesh& mesh, MechanicalSystem& system);
