@@ -104,13 +104,14 @@ int main(int argc, char** argv) {
                                           {"newton_iterations", res.root->summary.newton_iterations},
                                           {"wall_seconds", res.root->summary.wall_seconds}};
     for (const auto& term : system->terms())
-      if (const auto* c = dynamic_cast<const ContactTerm*>(term.get())) {
+      if (const auto* c = dynamic_cast<const ContactForceTerm*>(term.get())) {
         const ContactStatistics& st = c->statistics();
         summary.metrics()["contact"] = {{"detection_mm", c->detection_distance()},
                                         {"candidate_updates", st.candidate_updates},
                                         {"candidate_pairs", st.candidate_pairs},
                                         {"active_pairs", st.active_pairs},
                                         {"deepest_penetration_mm", st.deepest_penetration},
+                                        {"closest_distance_mm", st.closest_distance},
                                         {"broad_phase_seconds", st.broad_phase_seconds}};
       }
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {

@@ -4,43 +4,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "valve/mesh/closest_point.hpp"
 #include "valve/mesh/topology.hpp"
 
 namespace valve {
-
-namespace {
-// Closest point on triangle abc to p (Ericson, Real-Time Collision Detection, 5.1.5),
-// returned as barycentric coordinates.
-Vec3 closest_barycentric(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
-  if (d1 <= 0 && d2 <= 0) return {1, 0, 0};
-  const Vec3 bp = p - b;
-  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
-  if (d3 >= 0 && d4 <= d3) return {0, 1, 0};
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) {
-    const double v = d1 / (d1 - d3);
-    return {1 - v, v, 0};
-  }
-  const Vec3 cp = p - c;
-  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
-  if (d6 >= 0 && d5 <= d6) return {0, 0, 1};
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) {
-    const double w = d2 / (d2 - d6);
-    return {1 - w, 0, w};
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) {
-    const double w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-    return {0, 1 - w, w};
-  }
-  const double denom = 1.0 / (va + vb + vc);
-  const double v = vb * denom, w = vc * denom;
-  return {1 - v - w, v, w};
-}
-}  // namespace
 
 std::vector<int> free_edge_polyline(const TriMesh& m, int leaflet) {
   std::vector<Tri> tris;
@@ -92,7 +59,7 @@ SurfacePoint closest_surface_point(const TriMesh& m, const Vec3& p) {
   for (int t = 0; t < m.num_triangles(); ++t) {
     const Tri& tri = m.triangles[t];
     const Vec3 a = m.points.row(tri[0]), b = m.points.row(tri[1]), c = m.points.row(tri[2]);
-    const Vec3 w = closest_barycentric(p, a, b, c);
+    const Vec3 w = closest_point_weights(p, a, b, c);
     const double d = (w[0] * a + w[1] * b + w[2] * c - p).squaredNorm();
     if (d < bd) bd = d, best = {t, w};
   }

@@ -108,19 +108,37 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   }
   if (r.has("contact")) {
     JsonReader c = r.object("contact");
-    ContactOptions co;
-    co.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
-    co.penetration_stiffness = c.quantity("penetration_stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
-    co.zone = c.quantity("zone", Dimension::length, std::string("0.1 mm"), 1e-9, 1e3);
-    co.between_leaflets = c.boolean("between_leaflets", true);
-    co.self_contact = c.boolean("self", true);
-    co.normal_side_between_leaflets = c.choice("side_between_leaflets", {"normal", "memory"}, std::string("normal")) == "normal";
-    co.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
-    co.broad_phase = parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
-    if (co.detection != 0 && co.detection <= co.zone) c.fail("detection", "0 (automatic) or more than zone", std::to_string(co.detection) + " mm");
-    if (!co.between_leaflets && !co.self_contact) c.fail("self", "true when between_leaflets is false", "false");
+    const auto broad_phase = [&c] {
+      return parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
+    };
+    const bool between = c.boolean("between_leaflets", true), self = c.boolean("self", true);
+    if (!between && !self) c.fail("self", "true when between_leaflets is false", "false");
+    if (c.choice("model", {"penalty", "seed"}, std::string("penalty")) == "seed") {
+      ContactOptions co;
+      co.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
+      co.penetration_stiffness = c.quantity("penetration_stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
+      co.zone = c.quantity("zone", Dimension::length, std::string("0.1 mm"), 1e-9, 1e3);
+      co.between_leaflets = between;
+      co.self_contact = self;
+      co.normal_side_between_leaflets = c.choice("side_between_leaflets", {"normal", "memory"}, std::string("normal")) == "normal";
+      co.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
+      co.broad_phase = broad_phase();
+      if (co.detection != 0 && co.detection <= co.zone) c.fail("detection", "0 (automatic) or more than zone", std::to_string(co.detection) + " mm");
+      sc.contact = co;
+    } else {
+      PenaltyContactOptions po;
+      po.separation = c.quantity("separation", Dimension::length, std::string("0.25 mm"), 1e-6, 1e3);
+      po.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("1000 N/m"), 1e-12, 1e12);
+      po.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
+      po.edge_contact = c.boolean("edges", true);
+      po.between_leaflets = between;
+      po.self_contact = self;
+      po.broad_phase = broad_phase();
+      if (po.detection != 0 && po.detection <= po.separation)
+        c.fail("detection", "0 (automatic) or more than separation", std::to_string(po.detection) + " mm");
+      sc.penalty_contact = po;
+    }
     r.record("contact", c.finish());
-    sc.contact = co;
   }
   if (r.has("aortic_root")) {
     JsonReader a = r.object("aortic_root");
@@ -189,6 +207,13 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     JsonReader s = r.object("solver");
     const std::string type = s.choice("type", {"auto", "bdf2", "static"}, std::string("auto"));
     sc.solver = type == "auto" ? SolverKind::automatic : (type == "bdf2" ? SolverKind::bdf2 : SolverKind::static_newton);
+    // Contact needs small, time-resolved steps: the static solver's steps let surfaces cross
+    // (penalty_contact.hpp), so "auto" means BDF2 and "static" is refused.
+    if (sc.contact || sc.penalty_contact) {
+      if (sc.solver == SolverKind::static_newton)
+        s.fail("type", "bdf2 or auto when the scene has contact (static steps let surfaces cross)", "static");
+      sc.solver = SolverKind::bdf2;
+    }
     // Both option blocks are read (and validated) whichever solver runs, so that a scene
     // can carry both and be switched with --solver.
     JsonReader b = s.object("bdf2");

@@ -12,6 +12,7 @@
 #include "valve/config/json_reader.hpp"
 #include "valve/config/material_config.hpp"
 #include "valve/mechanics/contact.hpp"
+#include "valve/mechanics/penalty_contact.hpp"
 #include "valve/mechanics/damping.hpp"
 #include "valve/solver/bdf2.hpp"
 #include "valve/solver/static_solver.hpp"
@@ -84,7 +85,9 @@ struct SceneConfig {
   std::optional<EdgeLoadConfig> edge_loads;
   std::optional<DampingConfig> damping;
   FixedConfig fixed;
+  /// contact.model: "penalty" (default) fills penalty_contact, "seed" fills contact.
   std::optional<ContactOptions> contact;
+  std::optional<PenaltyContactOptions> penalty_contact;
   std::optional<AorticRootConfig> aortic_root;
   std::vector<LeafletMaterialConfig> leaflet_materials;
   std::vector<double> load_increments{1.0};

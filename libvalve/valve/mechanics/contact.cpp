@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "valve/core/error.hpp"
-#include "valve/mesh/topology.hpp"
+#include "valve/mechanics/contact_base.hpp"
 
 namespace valve {
 namespace {
@@ -54,42 +54,15 @@ void ContactOptions::validate() const {
 
 ContactTerm::ContactTerm(const TriMesh& mesh, const ContactOptions& opt, std::vector<const ForceTerm*> external,
                          const std::vector<char>& constrained)
-    : opt_(opt), triangles_(mesh.triangles), external_(std::move(external)) {
+    : opt_(opt), topology_(mesh, opt.self_contact, opt.between_leaflets), external_(std::move(external)) {
   opt_.validate();
   const int n = mesh.num_nodes();
-  leaflet_ = mesh.leaflet.empty() ? std::vector<int>(triangles_.size(), 0) : mesh.leaflet;
-  node_leaflets_.assign(n, {});
-  neighbours_.assign(n, {});
-  for (size_t t = 0; t < triangles_.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      node_leaflets_[triangles_[t][k]].push_back(leaflet_[t]);
-      for (int j = 0; j < 3; ++j) neighbours_[triangles_[t][k]].push_back(triangles_[t][j]);
-    }
-  for (auto* v : {&node_leaflets_, &neighbours_})
-    for (auto& list : *v) {
-      std::sort(list.begin(), list.end());
-      list.erase(std::unique(list.begin(), list.end()), list.end());
-    }
   query_.assign(n, 0);
-  for (int i = 0; i < n; ++i) query_[i] = !constrained[3 * i] && !neighbours_[i].empty();
-  detection_ = opt_.detection;
-  if (detection_ == 0) {
-    double sum = 0;
-    const auto edges = unique_edges(triangles_);
-    for (const auto& [a, b] : edges) sum += (mesh.points.row(a) - mesh.points.row(b)).norm();
-    detection_ = opt_.zone + (edges.empty() ? 0.0 : sum / edges.size());
-  }
-}
-
-bool ContactTerm::excluded(int node, int triangle) const {
-  const Tri& t = triangles_[triangle];
-  // A node never touches triangles it is part of or that share a vertex with its 1-ring:
-  // at a sharp bend those are within the zone without any contact.
-  for (int k = 0; k < 3; ++k)
-    if (std::binary_search(neighbours_[node].begin(), neighbours_[node].end(), t[k])) return true;
-  const bool same = std::binary_search(node_leaflets_[node].begin(), node_leaflets_[node].end(), leaflet_[triangle]);
-  if (same && node_leaflets_[node].size() == 1) return !opt_.self_contact;
-  return !opt_.between_leaflets;
+  std::vector<char> has_triangle(n, 0);
+  for (const Tri& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) has_triangle[t[k]] = 1;
+  for (int i = 0; i < n; ++i) query_[i] = !constrained[3 * i] && has_triangle[i];
+  detection_ = opt_.detection != 0 ? opt_.detection : opt_.zone + topology_.mean_edge_length();
 }
 
 void ContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
@@ -98,20 +71,20 @@ void ContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
 
 bool ContactTerm::update_couplings(const VecX& x) {
   const auto t0 = std::chrono::steady_clock::now();
-  const auto pairs = broad_phase_pairs(x, triangles_, detection_, opt_.broad_phase, query_);
+  const auto pairs = broad_phase_pairs(x, topology_.triangles(), detection_, opt_.broad_phase, query_);
   std::vector<Candidate> next;
   std::vector<PlaneGeometry> geom;
   next.reserve(pairs.size());
   for (const auto& [i, t] : pairs) {
-    if (excluded(i, t)) continue;
-    const PlaneGeometry g = plane_geometry(x, triangles_[t], node3(x, i));
+    if (topology_.excluded(i, t)) continue;
+    const PlaneGeometry g = plane_geometry(x, topology_.triangles()[t], node3(x, i));
     if (g.area2 <= 0 || std::abs(g.d) > detection_) continue;
     auto old = std::lower_bound(candidates_.begin(), candidates_.end(), std::make_pair(i, t),
                                 [](const Candidate& c, const std::pair<int, int>& key) {
                                   return std::make_pair(c.node, c.triangle) < key;
                                 });
     int side = (old != candidates_.end() && old->node == i && old->triangle == t) ? old->side : 0;
-    const bool own = std::binary_search(node_leaflets_[i].begin(), node_leaflets_[i].end(), leaflet_[t]);
+    const bool own = topology_.on_leaflet(i, topology_.leaflet_of(t));
     if (opt_.normal_side_between_leaflets && !own) side = 1;
     next.push_back({i, t, side});
     geom.push_back(g);
@@ -125,10 +98,10 @@ bool ContactTerm::update_couplings(const VecX& x) {
     while (b < next.size() && next[b].node == next[a].node) ++b;
     for (size_t k = a; k < b; ++k) {
       if (next[k].side != 0 || geom[k].barycentric.minCoeff() < opt_.inside_tolerance) continue;
-      const Tri& tk = triangles_[next[k].triangle];
+      const Tri& tk = topology_.triangles()[next[k].triangle];
       for (size_t j = a; j < b && next[k].side == 0; ++j) {
-        if (next[j].side == 0 || leaflet_[next[j].triangle] != leaflet_[next[k].triangle]) continue;
-        const Tri& tj = triangles_[next[j].triangle];
+        if (next[j].side == 0 || topology_.leaflet_of(next[j].triangle) != topology_.leaflet_of(next[k].triangle)) continue;
+        const Tri& tj = topology_.triangles()[next[j].triangle];
         bool shares = false;
         for (int u = 0; u < 3; ++u)
           for (int v = 0; v < 3; ++v) shares |= tk[u] == tj[v];
@@ -143,7 +116,7 @@ bool ContactTerm::update_couplings(const VecX& x) {
   coupled.reserve(3 * candidates_.size());
   for (const Candidate& c : candidates_)
     for (int k = 0; k < 3; ++k)
-      coupled.emplace_back(std::min(c.node, triangles_[c.triangle][k]), std::max(c.node, triangles_[c.triangle][k]));
+      coupled.emplace_back(std::min(c.node, topology_.triangles()[c.triangle][k]), std::max(c.node, topology_.triangles()[c.triangle][k]));
   std::sort(coupled.begin(), coupled.end());
   coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
   ++stats_.candidate_updates;
@@ -182,17 +155,17 @@ void ContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobia
     for (size_t c = a; c < b; ++c) {
       const Candidate& cand = candidates_[c];
       if (cand.side == 0) continue;
-      const PlaneGeometry g = plane_geometry(s.x, triangles_[cand.triangle], p);
+      const PlaneGeometry g = plane_geometry(s.x, topology_.triangles()[cand.triangle], p);
       const double d = cand.side * g.d;
       if (g.area2 <= 0 || d >= z || g.barycentric.minCoeff() < opt_.inside_tolerance) continue;
-      const int l = leaflet_[cand.triangle];
+      const int l = topology_.leaflet_of(cand.triangle);
       auto it = std::find_if(chosen.begin(), chosen.end(), [l](const Chosen& ch) { return ch.leaflet == l; });
       if (it == chosen.end()) chosen.push_back({l, c, d, g});
       else if (d < it->d) *it = {l, c, d, g};
     }
     for (const Chosen& ch : chosen) {
       const Candidate& cand = candidates_[ch.index];
-      const Tri& t = triangles_[cand.triangle];
+      const Tri& t = topology_.triangles()[cand.triangle];
       const PlaneGeometry& geo = ch.geometry;
       const Vec3 m = cand.side * geo.n;
       const Vec3 fe = node3(fext, i);

@@ -40,7 +40,7 @@
 #include <vector>
 
 #include "valve/mechanics/broad_phase.hpp"
-#include "valve/mechanics/force_term.hpp"
+#include "valve/mechanics/contact_base.hpp"
 #include "valve/mesh/tri_mesh.hpp"
 
 namespace valve {
@@ -63,15 +63,7 @@ struct ContactOptions {
   void validate() const;  // throws InputError
 };
 
-struct ContactStatistics {
-  long candidate_updates = 0;
-  long candidate_pairs = 0;      // at the last update
-  long active_pairs = 0;         // pairs inside the zone at the last evaluation
-  double broad_phase_seconds = 0;
-  double deepest_penetration = 0;  // mm, largest −d seen at an evaluation (0 if none)
-};
-
-class ContactTerm final : public ForceTerm {
+class ContactTerm final : public ContactForceTerm {
  public:
   /// `external` are the scene's external-load terms (their sum is f_ext); they must outlive
   /// this term. Nodes constrained in `constrained` (per dof) get no contact force.
@@ -83,22 +75,17 @@ class ContactTerm final : public ForceTerm {
   double max_step_length() const override { return 0.5 * (detection_ - opt_.zone); }
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
 
-  const ContactStatistics& statistics() const { return stats_; }
-  double detection_distance() const { return detection_; }
+  const ContactStatistics& statistics() const override { return stats_; }
+  double detection_distance() const override { return detection_; }
 
  private:
   struct Candidate {
     int node, triangle;
     int side;  // +1, −1, or 0 while undecided (|d| too small to tell)
   };
-  bool excluded(int node, int triangle) const;
-
   ContactOptions opt_;
+  ContactTopology topology_;
   double detection_;
-  std::vector<Tri> triangles_;
-  std::vector<int> leaflet_;                  // per triangle
-  std::vector<std::vector<int>> node_leaflets_;  // leaflets a node belongs to
-  std::vector<std::vector<int>> neighbours_;  // 1-ring of each node (sorted, incl. itself)
   std::vector<char> query_;                   // free nodes
   std::vector<const ForceTerm*> external_;
   std::vector<Candidate> candidates_;         // sorted by (node, triangle)

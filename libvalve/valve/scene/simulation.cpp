@@ -8,6 +8,7 @@
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/mechanics/aortic_root.hpp"
 #include "valve/mechanics/contact.hpp"
+#include "valve/mechanics/penalty_contact.hpp"
 #include "valve/mechanics/damping.hpp"
 #include "valve/mechanics/mass_spring.hpp"
 #include "valve/mechanics/membrane_fe.hpp"
@@ -116,6 +117,7 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
     sys->add_term(std::move(term));
   }
   if (sc.contact) sys->add_term(std::make_unique<ContactTerm>(m, *sc.contact, external, sys->constrained()));
+  if (sc.penalty_contact) sys->add_term(std::make_unique<PenaltyContactTerm>(m, *sc.penalty_contact, sys->constrained()));
   if (sc.edge_loads)
     sys->add_term(std::make_unique<NodalLoadTerm>(
         biaxial_edge_forces(m, sc.edge_loads->stress_x, sc.edge_loads->stress_y, sc.thickness)));

@@ -1,0 +1,70 @@
+#pragma once
+// What the two contact models (contact.hpp: the seed's Eq. 4.5; penalty_contact.hpp: a
+// conservative penalty) share: which primitives may touch, the statistics they report and
+// the interface a stage reads them through.
+//
+// ContactTopology: the part of contact detection that depends only on connectivity.
+// A node never touches a triangle that shares a vertex with the node's 1-ring: at a sharp
+// bend such triangles lie within any contact distance without touching. Pairs on the same
+// leaflet are self-contact, pairs on different leaflets contact between leaflets; a node
+// on two leaflets (commissure corner) counts as between leaflets.
+#include <utility>
+#include <vector>
+
+#include "valve/mechanics/force_term.hpp"
+#include "valve/mesh/tri_mesh.hpp"
+
+namespace valve {
+
+struct ContactStatistics {
+  long candidate_updates = 0;
+  long candidate_pairs = 0;        // at the last update
+  long active_pairs = 0;           // pairs exerting a force at the last evaluation
+  double broad_phase_seconds = 0;
+  double deepest_penetration = 0;  // mm at the last evaluation; see each model for its meaning
+  double closest_distance = -1;    // mm, smallest distance of an active pair (-1: none)
+};
+
+/// A force term that detects contact; stages report its statistics.
+class ContactForceTerm : public ForceTerm {
+ public:
+  virtual const ContactStatistics& statistics() const = 0;
+  /// Pairs closer than this are candidates between two coupling updates (mm).
+  virtual double detection_distance() const = 0;
+};
+
+class ContactTopology {
+ public:
+  ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets);
+
+  /// True when node `node` must not interact with triangle `triangle`.
+  bool excluded(int node, int triangle) const;
+  /// True when edge (a, b) must not interact with edge (c, d): they share a vertex or one
+  /// edge's vertex is in the other's 1-ring, or the leaflet rule excludes them.
+  bool excluded_edges(int a, int b, int c, int d) const;
+  bool on_leaflet(int node, int leaflet) const;
+
+  const std::vector<Tri>& triangles() const { return triangles_; }
+  int leaflet_of(int triangle) const { return leaflet_[triangle]; }
+  /// Mean rest edge length (mm); 0 for a mesh without edges.
+  double mean_edge_length() const { return mean_edge_; }
+  /// All edges (a < b), sorted.
+  const std::vector<std::pair<int, int>>& edges() const { return edges_; }
+  /// Per edge: 1 when it has only one triangle (free edges and attached boundaries).
+  const std::vector<char>& boundary_edge() const { return boundary_edge_; }
+
+ private:
+  bool in_ring(int node, int other) const;
+  bool leaflet_rule_excludes(int node, int leaflet) const;
+
+  bool self_, between_;
+  std::vector<Tri> triangles_;
+  std::vector<int> leaflet_;                     // per triangle
+  std::vector<std::vector<int>> node_leaflets_;  // sorted
+  std::vector<std::vector<int>> ring_;           // sorted 1-ring incl. the node
+  std::vector<std::pair<int, int>> edges_;
+  std::vector<char> boundary_edge_;
+  double mean_edge_ = 0;
+};
+
+}  // namespace valve

@@ -1,0 +1,246 @@
+#include "valve/mechanics/penalty_contact.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "valve/core/error.hpp"
+#include "valve/mesh/closest_point.hpp"
+
+namespace valve {
+
+void PenaltyContactOptions::validate() const {
+  if (!(separation > 0)) throw InputError("contact.separation: expected > 0 mm, found " + std::to_string(separation));
+  if (!(stiffness > 0)) throw InputError("contact.stiffness: expected > 0, found " + std::to_string(stiffness));
+  if (detection != 0 && !(detection > separation))
+    throw InputError("contact.detection: expected 0 (automatic) or more than the separation");
+  if (!between_leaflets && !self_contact)
+    throw InputError("contact: expected between_leaflets or self_contact (or both) to be true");
+}
+
+PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContactOptions& opt,
+                                       const std::vector<char>& constrained)
+    : opt_(opt), topology_(mesh, opt.self_contact, opt.between_leaflets) {
+  opt_.validate();
+  detection_ = opt_.detection != 0 ? opt_.detection
+                                   : opt_.separation + 4 * std::max(opt_.separation, 0.5 * topology_.mean_edge_length());
+  const int n = mesh.num_nodes();
+  constrained_node_.assign(n, 0);
+  query_.assign(n, 0);
+  edge_query_.assign(n, 0);
+  node_boundary_edges_.assign(n, {});
+  for (int i = 0; i < n; ++i) constrained_node_[i] = constrained[3 * i];
+  for (const Tri& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) query_[t[k]] = 1;
+  const auto& edges = topology_.edges();
+  for (size_t e = 0; e < edges.size(); ++e)
+    if (topology_.boundary_edge()[e] && opt_.edge_contact)
+      for (int v : {edges[e].first, edges[e].second}) {
+        edge_query_[v] = 1;
+        node_boundary_edges_[v].push_back(static_cast<int>(e));
+      }
+  triangle_edges_.assign(mesh.triangles.size(), {});
+  for (size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const std::pair<int, int> key(std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
+                                    std::max(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]));
+      triangle_edges_[t].push_back(static_cast<int>(std::lower_bound(edges.begin(), edges.end(), key) - edges.begin()));
+    }
+}
+
+void PenaltyContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
+  pairs.insert(pairs.end(), coupled_.begin(), coupled_.end());
+}
+
+bool PenaltyContactTerm::update_couplings(const VecX& x) {
+  bool stale = built_at_.size() != x.size();
+  const double verlet_step = 0.25 * (detection_ - opt_.separation);
+  for (int i = 0; !stale && i < x.size() / 3; ++i) stale = (node3(x, i) - node3(built_at_, i)).norm() > verlet_step;
+  if (stale) rebuild_candidates(x);
+  // The pattern needs the pairs active here, where the Jacobian is evaluated; it only
+  // grows, so that a pair leaving contact does not force a symbolic re-analysis.
+  std::vector<Contact> contacts;
+  active_contacts(x, contacts);
+  std::vector<std::pair<int, int>> coupled;
+  for (const Contact& c : contacts)
+    for (int j = 0; j < c.count; ++j)
+      for (int l = j + 1; l < c.count; ++l)
+        coupled.emplace_back(std::min(c.nodes[j], c.nodes[l]), std::max(c.nodes[j], c.nodes[l]));
+  std::sort(coupled.begin(), coupled.end());
+  coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
+  std::vector<std::pair<int, int>> merged;
+  std::set_union(coupled_.begin(), coupled_.end(), coupled.begin(), coupled.end(), std::back_inserter(merged));
+  const bool changed = merged.size() != coupled_.size();
+  coupled_ = std::move(merged);
+  return changed;
+}
+
+void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
+  built_at_ = x;
+  const auto t0 = std::chrono::steady_clock::now();
+  const auto& tris = topology_.triangles();
+  const auto& edges = topology_.edges();
+  auto all_constrained = [&](std::initializer_list<int> nodes) {
+    for (int v : nodes)
+      if (!constrained_node_[v]) return false;
+    return true;
+  };
+
+  face_pairs_.clear();
+  for (const auto& [i, t] : broad_phase_pairs(x, tris, detection_, opt_.broad_phase, query_)) {
+    const Tri& tri = tris[t];
+    if (topology_.excluded(i, t) || all_constrained({i, tri[0], tri[1], tri[2]})) continue;
+    const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
+    const Vec3 w = closest_point_weights(p, a, b, c);
+    if ((p - (w[0] * a + w[1] * b + w[2] * c)).norm() <= detection_) face_pairs_.emplace_back(i, t);
+  }
+
+  edge_pairs_.clear();
+  if (opt_.edge_contact) {
+    // A point of a boundary edge within D of an edge lies within D + |edge| of the edge's
+    // triangles from either end node of the boundary edge.
+    double longest = 0;
+    for (size_t e = 0; e < edges.size(); ++e)
+      if (topology_.boundary_edge()[e])
+        longest = std::max(longest, (node3(x, edges[e].first) - node3(x, edges[e].second)).norm());
+    std::vector<std::pair<int, int>> found;
+    for (const auto& [i, t] : broad_phase_pairs(x, tris, detection_ + longest, opt_.broad_phase, edge_query_))
+      for (int be : node_boundary_edges_[i])
+        for (int e : triangle_edges_[t]) {
+          if (e == be) continue;
+          // A boundary-boundary pair is found from both sides; keep one.
+          if (topology_.boundary_edge()[e] && e < be) continue;
+          found.emplace_back(be, e);
+        }
+    std::sort(found.begin(), found.end());
+    found.erase(std::unique(found.begin(), found.end()), found.end());
+    for (const auto& [be, e] : found) {
+      const auto [a, b] = edges[be];
+      const auto [c, d] = edges[e];
+      if (topology_.excluded_edges(a, b, c, d) || all_constrained({a, b, c, d})) continue;
+      const Vec3 xa = node3(x, a), xb = node3(x, b), xc = node3(x, c), xd = node3(x, d);
+      const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
+      if ((xa + s * (xb - xa) - xc - u * (xd - xc)).norm() > detection_) continue;
+      edge_pairs_.emplace_back(be, e);
+    }
+  }
+
+  ++stats_.candidate_updates;
+  stats_.candidate_pairs = static_cast<long>(face_pairs_.size() + edge_pairs_.size());
+  stats_.broad_phase_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out) const {
+  out.clear();
+  const double delta = opt_.separation;
+  const auto& tris = topology_.triangles();
+  struct Near {
+    int triangle, leaflet;
+    Vec3 w;
+    Vec3 q;
+    double d;
+  };
+  std::vector<Near> near;
+  for (size_t a = 0; a < face_pairs_.size();) {
+    const int i = face_pairs_[a].first;
+    size_t b = a;
+    while (b < face_pairs_.size() && face_pairs_[b].first == i) ++b;
+    const Vec3 p = node3(x, i);
+    near.clear();
+    for (size_t k = a; k < b; ++k) {
+      const int t = face_pairs_[k].second;
+      const Tri& tri = tris[t];
+      const Vec3 xa = node3(x, tri[0]), xb = node3(x, tri[1]), xc = node3(x, tri[2]);
+      const Vec3 w = closest_point_weights(p, xa, xb, xc);
+      const Vec3 q = w[0] * xa + w[1] * xb + w[2] * xc;
+      near.push_back({t, topology_.leaflet_of(t), w, q, (p - q).norm()});
+    }
+    // Per leaflet: the nearest triangle, and triangles touched on their face that share no
+    // vertex with it (another layer of a fold).
+    std::sort(near.begin(), near.end(), [](const Near& u, const Near& v) {
+      return u.leaflet != v.leaflet ? u.leaflet < v.leaflet : u.d < v.d;
+    });
+    for (size_t k = 0; k < near.size(); ++k) {
+      const Near& c = near[k];
+      if (c.d >= delta) continue;
+      const bool nearest = k == 0 || near[k - 1].leaflet != c.leaflet;
+      if (!nearest) {
+        if (c.w.minCoeff() <= 1e-9) continue;
+        size_t first = k;
+        while (first > 0 && near[first - 1].leaflet == c.leaflet) --first;
+        const Tri& t0 = tris[near[first].triangle];
+        const Tri& t1 = tris[c.triangle];
+        bool shares = false;
+        for (int u = 0; u < 3; ++u)
+          for (int v = 0; v < 3; ++v) shares |= t0[u] == t1[v];
+        if (shares) continue;
+      }
+      Contact ct;
+      const Tri& tri = tris[c.triangle];
+      ct.count = 4;
+      ct.nodes[0] = i, ct.weights[0] = 1;
+      for (int j = 0; j < 3; ++j) ct.nodes[j + 1] = tri[j], ct.weights[j + 1] = -c.w[j];
+      ct.distance = c.d;
+      if (c.d > 1e-12) {
+        ct.normal = (p - c.q) / c.d;
+      } else {  // on the surface: push along the face normal
+        const Vec3 xa = node3(x, tri[0]);
+        ct.normal = (node3(x, tri[1]) - xa).cross(node3(x, tri[2]) - xa).normalized();
+      }
+      if (ct.normal.allFinite()) out.push_back(ct);
+    }
+    a = b;
+  }
+  const auto& edges = topology_.edges();
+  const double inner = 1e-9;
+  for (const auto& [be, e] : edge_pairs_) {
+    const auto [a, b] = edges[be];
+    const auto [c, d] = edges[e];
+    const Vec3 xa = node3(x, a), xb = node3(x, b), xc = node3(x, c), xd = node3(x, d);
+    const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
+    // Closest points at an end are node–triangle contacts already.
+    if (s <= inner || s >= 1 - inner || u <= inner || u >= 1 - inner) continue;
+    const Vec3 diff = (xa + s * (xb - xa)) - (xc + u * (xd - xc));
+    const double dist = diff.norm();
+    if (dist >= delta) continue;
+    Contact ct;
+    ct.count = 4;
+    ct.nodes[0] = a, ct.nodes[1] = b, ct.nodes[2] = c, ct.nodes[3] = d;
+    ct.weights[0] = 1 - s, ct.weights[1] = s, ct.weights[2] = -(1 - u), ct.weights[3] = -u;
+    ct.distance = dist;
+    ct.normal = dist > 1e-12 ? Vec3(diff / dist) : Vec3((xb - xa).cross(xd - xc).normalized());
+    if (ct.normal.allFinite()) out.push_back(ct);
+  }
+}
+
+void PenaltyContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
+  std::vector<Contact> contacts;
+  active_contacts(s.x, contacts);
+  const double k = opt_.stiffness, delta = opt_.separation;
+  stats_.active_pairs = static_cast<long>(contacts.size());
+  stats_.closest_distance = -1;
+  stats_.deepest_penetration = 0;
+  for (const Contact& c : contacts) {
+    stats_.closest_distance = stats_.closest_distance < 0 ? c.distance : std::min(stats_.closest_distance, c.distance);
+    stats_.deepest_penetration = std::max(stats_.deepest_penetration, delta - c.distance);
+    const double gap = delta - c.distance;
+    const double magnitude = k * gap * gap / delta, slope = 2 * k * gap / delta;
+    for (int j = 0; j < c.count; ++j) node3(f, c.nodes[j]) += magnitude * c.weights[j] * c.normal;
+    if (!dfdx) continue;
+    const Mat3 nn = c.normal * c.normal.transpose();
+    for (int j = 0; j < c.count; ++j)
+      for (int l = 0; l < c.count; ++l)
+        dfdx->add(c.nodes[j], c.nodes[l], (-slope * c.weights[j] * c.weights[l]) * nn);
+  }
+}
+
+bool PenaltyContactTerm::energy(const State& s, double& e) const {
+  std::vector<Contact> contacts;
+  active_contacts(s.x, contacts);
+  e = 0;
+  for (const Contact& c : contacts) e += opt_.stiffness * std::pow(opt_.separation - c.distance, 3) / (3 * opt_.separation);
+  return true;
+}
+
+}  // namespace valve

@@ -1,0 +1,17 @@
+#pragma once
+// Closest-point queries (Ericson, Real-Time Collision Detection, 5.1.5 and 5.1.9), written
+// here rather than taken from CGAL because contact forces and surface distances need the
+// barycentric weights of the closest point, which CGAL's squared_distance does not return,
+// and contact calls them in its inner loop.
+#include <utility>
+
+#include "valve/core/types.hpp"
+
+namespace valve {
+
+/// Closest point of triangle (a, b, c) to p as barycentric weights (w_a, w_b, w_c).
+Vec3 closest_point_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+/// Parameters (s, t) of the closest points a + s (b − a), c + t (d − c) of two segments.
+std::pair<double, double> closest_segment_parameters(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
+
+}  // namespace valve

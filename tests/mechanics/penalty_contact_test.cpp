@@ -1,0 +1,210 @@
+// Penalty contact (mechanics/penalty_contact.hpp): the closest-point queries against dense
+// sampling, forces as the exact negative gradient of the energy, action and reaction,
+// the Gauss-Newton Jacobian where it is exact, exclusions, and the edge-on crossing that
+// node-face contact alone cannot see.
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "support/test_meshes.hpp"
+#include "valve/core/error.hpp"
+#include "valve/mechanics/penalty_contact.hpp"
+#include "valve/mesh/closest_point.hpp"
+
+using namespace valve;
+using namespace valve::test;
+
+namespace {
+
+// Leaflet 0: triangle (0, 1, 2) in z = 0. Leaflet 1: triangle (3, 4, 5) whose node 3 sits
+// at (0.5, 0.5, h) over the first one's face, nodes 4 and 5 far outside its footprint.
+TriMesh two_sheets(double h) {
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0,  //
+      0.5, 0.5, h, 5, 0.5, h + 3, 0.5, 5, h + 2;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  return m;
+}
+
+VecX forces(const PenaltyContactTerm& c, const VecX& x) {
+  VecX f = VecX::Zero(x.size());
+  c.add(State{x, VecX::Zero(x.size()), 1.0, 0}, f, nullptr, nullptr);
+  return f;
+}
+
+double energy_of(const PenaltyContactTerm& c, const VecX& x) {
+  double e = 0;
+  REQUIRE(c.energy(State{x, VecX::Zero(x.size()), 1.0, 0}, e));
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("closest point on a triangle and between segments match dense sampling", "[mechanics][penalty_contact]") {
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(-2, 2);
+  auto rnd = [&] { return Vec3(u(gen), u(gen), u(gen)); };
+  const int n = 300;
+  for (int trial = 0; trial < 200; ++trial) {
+    const Vec3 p = rnd(), a = rnd(), b = rnd(), c = rnd();
+    const Vec3 w = closest_point_weights(p, a, b, c);
+    CHECK(w.minCoeff() >= -1e-12);
+    CHECK(w.sum() == Approx(1).margin(1e-12));
+    const double ours = (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
+    double best = 1e300;
+    for (int i = 0; i <= n; ++i)
+      for (int j = 0; i + j <= n; ++j) {
+        const double s = double(i) / n, t = double(j) / n;
+        best = std::min(best, (p - (a + s * (b - a) + t * (c - a))).norm());
+      }
+    // Sampling can only be worse than the true minimum, by at most the grid spacing.
+    const double spacing = std::max({(b - a).norm(), (c - a).norm(), (c - b).norm()}) / n;
+    CHECK(ours <= best + 1e-12);
+    CHECK(ours >= best - spacing);
+
+    const Vec3 d = rnd();
+    const auto [s, t] = closest_segment_parameters(a, b, c, d);
+    CHECK(s >= 0);
+    CHECK(s <= 1);
+    CHECK(t >= 0);
+    CHECK(t <= 1);
+    const double seg = ((a + s * (b - a)) - (c + t * (d - c))).norm();
+    double seg_best = 1e300;
+    for (int i = 0; i <= 2000; ++i)
+      for (int j = 0; j <= 200; ++j) {
+        const double si = i / 2000.0, tj = j / 200.0;
+        seg_best = std::min(seg_best, ((a + si * (b - a)) - (c + tj * (d - c))).norm());
+      }
+    CHECK(seg <= seg_best + 1e-12);
+    CHECK(seg >= seg_best - ((d - c).norm() / 200 + (b - a).norm() / 2000));
+  }
+}
+
+TEST_CASE("penalty contact: force magnitude, reaction, energy gradient", "[mechanics][penalty_contact]") {
+  PenaltyContactOptions opt;  // δ = 0.25 mm, k = 1 N/mm
+  const TriMesh m = two_sheets(0.1);
+  PenaltyContactTerm c(m, opt, std::vector<char>(18, 0));
+  VecX x = flatten(m.points);
+  c.update_couplings(x);
+  const VecX f = forces(c, x);
+  // Node 3 is 0.1 mm over the face: f = k (δ − d)² / δ = 0.0225 / 0.25 = 0.09 N along +z,
+  // and the triangle takes the reaction in proportion to the closest point's weights
+  // (0.5, 0.25, 0.25).
+  CHECK(node3(f, 3).z() == Approx(0.09).epsilon(1e-12));
+  CHECK(node3(f, 3).head<2>().norm() < 1e-14);
+  CHECK(node3(f, 0).z() == Approx(-0.045).epsilon(1e-12));
+  CHECK(node3(f, 1).z() == Approx(-0.0225).epsilon(1e-12));
+  CHECK(node3(f, 2).z() == Approx(-0.0225).epsilon(1e-12));
+  Vec3 total = Vec3::Zero();
+  for (int i = 0; i < 6; ++i) total += node3(f, i);
+  CHECK(total.norm() < 1e-14);
+  CHECK(energy_of(c, x) == Approx(0.15 * 0.15 * 0.15 / 0.75));  // k (δ − d)³ / (3 δ)
+  // Beyond the separation: no force, no energy.
+  VecX far = x;
+  far[3 * 3 + 2] = 0.3;
+  CHECK(forces(c, far).norm() == 0);
+  CHECK(energy_of(c, far) == 0);
+
+  // f = −dE/dx in generic positions: node over the face, over an edge, over a vertex.
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
+  for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, -0.1, 0.1), Vec3(-0.08, -0.1, 0.1)}) {
+    VecX y = x;
+    node3(y, 3) = p;
+    y[3 * 1 + 2] = 0.05;
+    for (int i = 0; i < 6; ++i) node3(y, i) = R * node3(y, i);
+    c.update_couplings(y);
+    const VecX fy = forces(c, y);
+    REQUIRE(fy.norm() > 0);
+    const double h = 1e-7;
+    for (int k = 0; k < y.size(); ++k) {
+      VecX yp = y, ym = y;
+      yp[k] += h;
+      ym[k] -= h;
+      INFO("p = " << p.transpose() << ", dof " << k);
+      CHECK(fy[k] == Approx(-(energy_of(c, yp) - energy_of(c, ym)) / (2 * h)).margin(1e-7));
+    }
+  }
+}
+
+TEST_CASE("penalty contact Jacobian: exact over a fixed face, symmetric and non-positive", "[mechanics][penalty_contact][fd]") {
+  const TriMesh m = two_sheets(0.1);
+  std::vector<char> fixed(18, 0);
+  for (int d = 0; d < 9; ++d) fixed[d] = 1;  // the lower triangle is fixed
+  PenaltyContactTerm c(m, PenaltyContactOptions{}, fixed);
+  VecX x = flatten(m.points);
+  node3(x, 3) = Vec3(0.6, 0.4, 0.08);
+  c.update_couplings(x);
+  const VecX v = VecX::Zero(x.size());
+  const auto num = numeric_dfdx(c, x, v, 1.0, 1e-7);
+  const auto ana = analytic_dfdx(c, m.num_nodes(), x, v, 1.0);
+  // Node 3's own block: for a node over the face of a triangle that does not move, d is
+  // linear in the node's position and Gauss-Newton is exact.
+  CHECK((ana.block<3, 3>(9, 9) - num.block<3, 3>(9, 9)).norm() < 1e-6);
+  CHECK(ana.block<3, 3>(9, 9)(2, 2) == Approx(-2 * 0.17 / 0.25));  // −2 k (δ − d) / δ at d = 0.08
+  CHECK((ana - ana.transpose()).norm() < 1e-14);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(ana);
+  CHECK(eig.eigenvalues().maxCoeff() < 1e-12);
+}
+
+TEST_CASE("penalty contact stops free edges crossing edge-on", "[mechanics][penalty_contact]") {
+  // Two triangles at right angles (one in y = 0 below z = 0, one in x = 0 above z = 0.1)
+  // whose free edges 0-1 and 3-4 cross 0.1 mm apart while every node is at least 1 mm from
+  // the other triangle: only the edge pair sees it.
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << -1, 0, 0, 1, 0, 0, 0, 0, -2,  //
+      0, -1, 0.1, 0, 1, 0.1, 0, 0, 2.1;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  const VecX x = flatten(m.points);
+  PenaltyContactOptions opt;
+  PenaltyContactTerm with_edges(m, opt, std::vector<char>(18, 0));
+  opt.edge_contact = false;
+  PenaltyContactTerm faces_only(m, opt, std::vector<char>(18, 0));
+  with_edges.update_couplings(x);
+  faces_only.update_couplings(x);
+  CHECK(forces(faces_only, x).norm() == 0);
+  const VecX f = forces(with_edges, x);
+  // The crossing points are the edges' midpoints, 0.1 mm apart along z: k (δ − d)² / δ =
+  // 0.09 N split half and half over each edge's two nodes, pushing the edges apart along z.
+  CHECK(node3(f, 3).z() == Approx(0.045).epsilon(1e-9));
+  CHECK(node3(f, 4).z() == Approx(0.045).epsilon(1e-9));
+  CHECK(node3(f, 0).z() == Approx(-0.045).epsilon(1e-9));
+  CHECK(node3(f, 1).z() == Approx(-0.045).epsilon(1e-9));
+  CHECK(node3(f, 2).norm() == 0);
+  CHECK(node3(f, 5).norm() == 0);
+}
+
+TEST_CASE("penalty contact exclusions, step limit and option checks", "[mechanics][penalty_contact]") {
+  const TriMesh m = two_sheets(0.1);
+  const VecX x = flatten(m.points);
+  PenaltyContactOptions self_only;
+  self_only.between_leaflets = false;
+  PenaltyContactTerm c_self(m, self_only, std::vector<char>(18, 0));
+  c_self.update_couplings(x);
+  CHECK(forces(c_self, x).norm() == 0);
+  std::vector<char> all(18, 1);
+  PenaltyContactTerm c_fixed(m, PenaltyContactOptions{}, all);
+  c_fixed.update_couplings(x);
+  CHECK(c_fixed.statistics().candidate_pairs == 0);
+  // Steps of at most min((D − δ)/4, 0.4 δ); by default D = δ + 4 max(δ, mean edge / 2).
+  PenaltyContactOptions given;
+  given.detection = 0.75;
+  CHECK(PenaltyContactTerm(m, given, std::vector<char>(18, 0)).max_step_length() == Approx(0.1));  // 0.4 δ
+  const TriMesh grid = grid_mesh(2.0);  // 8 triangles: 12 edges of 1 mm, 4 diagonals of √2 mm
+  const double mean_edge = (12 * 1.0 + 4 * std::sqrt(2.0)) / 16;
+  PenaltyContactTerm c(grid, PenaltyContactOptions{}, std::vector<char>(27, 0));
+  CHECK(c.detection_distance() == Approx(0.25 + 4 * std::max(0.25, mean_edge / 2)));
+  CHECK(c.max_step_length() == Approx(0.1));  // never more than 0.4 δ
+  PenaltyContactOptions bad;
+  bad.separation = 0;
+  CHECK_THROWS_AS(bad.validate(), InputError);
+  bad = PenaltyContactOptions{};
+  bad.detection = 0.2;
+  CHECK_THROWS_AS(bad.validate(), InputError);
+}
