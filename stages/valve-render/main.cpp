@@ -14,19 +14,12 @@
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/io/render.hpp"
+#include "valve/pipeline/process.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 namespace {
-
-bool on_path(const std::string& program) {
-  const char* path = std::getenv("PATH");
-  std::stringstream ss(path ? path : "");
-  for (std::string dir; std::getline(ss, dir, ':');)
-    if (!dir.empty() && ::access((fs::path(dir) / program).c_str(), X_OK) == 0) return true;
-  return false;
-}
 
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> parts;
@@ -40,7 +33,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 
 int main(int argc, char** argv) {
   // Debian's VTK needs X: give ourselves a virtual display once, before anything is written.
-  if (!render_display_available() && !std::getenv("VALVE_RENDER_UNDER_XVFB") && on_path("xvfb-run")) {
+  if (!render_display_available() && !std::getenv("VALVE_RENDER_UNDER_XVFB") && find_on_path("xvfb-run")) {
     setenv("VALVE_RENDER_UNDER_XVFB", "1", 1);
     std::vector<char*> args{const_cast<char*>("xvfb-run"), const_cast<char*>("-a"), const_cast<char*>("-s"),
                             const_cast<char*>("-screen 0 1280x1024x24")};

@@ -19,19 +19,6 @@ using namespace valve::test;
 
 namespace {
 
-// Leaflet 0: a triangle in the z = 0 plane (normal +z). Leaflet 1: a triangle with node 3
-// above the first one at height h, nodes 4 and 5 far outside its footprint.
-TriMesh two_sheets(double h) {
-  TriMesh m;
-  m.points.resize(6, 3);
-  m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0,  //
-      0.5, 0.5, h, 5, 0.5, h + 0.3, 0.5, 5, h + 0.2;
-  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
-  m.leaflet = {0, 1};
-  m.fill_defaults();
-  return m;
-}
-
 VecX push_down(int nodes, int node, double force) {
   VecX f = VecX::Zero(3 * nodes);
   f[3 * node + 2] = -force;

@@ -17,19 +17,6 @@ using namespace valve::test;
 
 namespace {
 
-// Leaflet 0: triangle (0, 1, 2) in z = 0. Leaflet 1: triangle (3, 4, 5) whose node 3 sits
-// at (0.5, 0.5, h) over the first one's face, nodes 4 and 5 far outside its footprint.
-TriMesh two_sheets(double h) {
-  TriMesh m;
-  m.points.resize(6, 3);
-  m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0,  //
-      0.5, 0.5, h, 5, 0.5, h + 3, 0.5, 5, h + 2;
-  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
-  m.leaflet = {0, 1};
-  m.fill_defaults();
-  return m;
-}
-
 VecX forces(const PenaltyContactTerm& c, const VecX& x) {
   VecX f = VecX::Zero(x.size());
   c.add(State{x, VecX::Zero(x.size()), 1.0, 0}, f, nullptr, nullptr);

@@ -27,6 +27,20 @@ inline TriMesh grid_mesh(double size = 2.0, double fiber_deg = 30.0) {
   return m;
 }
 
+/// Two one-triangle leaflets. Leaflet 0: triangle (0, 1, 2) in z = 0, normal +z.
+/// Leaflet 1: triangle (3, 4, 5) whose node 3 sits at (0.5, 0.5, h) over the first one's
+/// face, nodes 4 and 5 far outside its footprint and well above it.
+inline TriMesh two_sheets(double h) {
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0,  //
+      0.5, 0.5, h, 5, 0.5, h + 3, 0.5, 5, h + 2;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  return m;
+}
+
 /// Rest positions displaced by a random perturbation of size `amp` plus a stretch, so that
 /// springs and elements are in a generic (tension, shear, out-of-plane) state.
 inline VecX perturbed(const TriMesh& m, double amp, unsigned seed = 7, double stretch = 1.15) {

@@ -58,10 +58,7 @@ ContactTerm::ContactTerm(const TriMesh& mesh, const ContactOptions& opt, std::ve
   opt_.validate();
   const int n = mesh.num_nodes();
   query_.assign(n, 0);
-  std::vector<char> has_triangle(n, 0);
-  for (const Tri& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) has_triangle[t[k]] = 1;
-  for (int i = 0; i < n; ++i) query_[i] = !constrained[3 * i] && has_triangle[i];
+  for (int i = 0; i < n; ++i) query_[i] = !constrained[3 * i] && topology_.has_triangles(i);
   detection_ = opt_.detection != 0 ? opt_.detection : opt_.zone + topology_.mean_edge_length();
 }
 
@@ -101,11 +98,8 @@ bool ContactTerm::update_couplings(const VecX& x) {
       const Tri& tk = topology_.triangles()[next[k].triangle];
       for (size_t j = a; j < b && next[k].side == 0; ++j) {
         if (next[j].side == 0 || topology_.leaflet_of(next[j].triangle) != topology_.leaflet_of(next[k].triangle)) continue;
-        const Tri& tj = topology_.triangles()[next[j].triangle];
-        bool shares = false;
-        for (int u = 0; u < 3; ++u)
-          for (int v = 0; v < 3; ++v) shares |= tk[u] == tj[v];
-        if (shares && geom[k].n.dot(geom[j].n) > 0.5) next[k].side = next[j].side;
+        if (share_vertex(tk, topology_.triangles()[next[j].triangle]) && geom[k].n.dot(geom[j].n) > 0.5)
+          next[k].side = next[j].side;
       }
       if (next[k].side == 0 && std::abs(geom[k].d) > undecided_band) next[k].side = geom[k].d > 0 ? 1 : -1;
     }
@@ -117,18 +111,10 @@ bool ContactTerm::update_couplings(const VecX& x) {
   for (const Candidate& c : candidates_)
     for (int k = 0; k < 3; ++k)
       coupled.emplace_back(std::min(c.node, topology_.triangles()[c.triangle][k]), std::max(c.node, topology_.triangles()[c.triangle][k]));
-  std::sort(coupled.begin(), coupled.end());
-  coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
   ++stats_.candidate_updates;
   stats_.candidate_pairs = static_cast<long>(candidates_.size());
   stats_.broad_phase_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  // The Jacobian pattern only has to grow: stale couplings cost a few zeros, and keeping
-  // them spares a symbolic re-analysis every time a pair leaves the candidate set.
-  std::vector<std::pair<int, int>> merged;
-  std::set_union(coupled_.begin(), coupled_.end(), coupled.begin(), coupled.end(), std::back_inserter(merged));
-  const bool changed = merged.size() != coupled_.size();
-  coupled_ = std::move(merged);
-  return changed;
+  return grow_couplings(coupled_, std::move(coupled));
 }
 
 void ContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {

@@ -1,6 +1,7 @@
 #include "valve/mechanics/contact_base.hpp"
 
 #include <algorithm>
+#include <iterator>
 
 #include "valve/mesh/topology.hpp"
 
@@ -60,6 +61,23 @@ bool ContactTopology::excluded_edges(int a, int b, int c, int d) const {
   for (int l : node_leaflets_[c])
     if (on_leaflet(d, l)) return leaflet_rule_excludes(a, l);
   return true;
+}
+
+bool share_vertex(const Tri& a, const Tri& b) {
+  for (int u = 0; u < 3; ++u)
+    for (int v = 0; v < 3; ++v)
+      if (a[u] == b[v]) return true;
+  return false;
+}
+
+bool grow_couplings(std::vector<std::pair<int, int>>& pattern, std::vector<std::pair<int, int>> added) {
+  std::sort(added.begin(), added.end());
+  added.erase(std::unique(added.begin(), added.end()), added.end());
+  std::vector<std::pair<int, int>> merged;
+  std::set_union(pattern.begin(), pattern.end(), added.begin(), added.end(), std::back_inserter(merged));
+  const bool grew = merged.size() != pattern.size();
+  pattern = std::move(merged);
+  return grew;
 }
 
 }  // namespace valve

@@ -25,6 +25,15 @@ struct ContactStatistics {
   double closest_distance = -1;    // mm, smallest distance of an active pair (-1: none)
 };
 
+/// Whether two triangles share a vertex.
+bool share_vertex(const Tri& a, const Tri& b);
+
+/// Adds the node pairs `added` (any order, duplicates allowed) to the sorted Jacobian
+/// pattern `pattern` and returns whether it grew. The pattern only grows: stale couplings
+/// cost a few zeros, and keeping them spares a symbolic re-analysis whenever a pair leaves
+/// contact.
+bool grow_couplings(std::vector<std::pair<int, int>>& pattern, std::vector<std::pair<int, int>> added);
+
 /// A force term that detects contact; stages report its statistics.
 class ContactForceTerm : public ForceTerm {
  public:
@@ -43,6 +52,8 @@ class ContactTopology {
   /// edge's vertex is in the other's 1-ring, or the leaflet rule excludes them.
   bool excluded_edges(int a, int b, int c, int d) const;
   bool on_leaflet(int node, int leaflet) const;
+  /// Whether the node belongs to any triangle (isolated nodes never touch anything).
+  bool has_triangles(int node) const { return !ring_[node].empty(); }
 
   const std::vector<Tri>& triangles() const { return triangles_; }
   int leaflet_of(int triangle) const { return leaflet_[triangle]; }

@@ -31,8 +31,7 @@ PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContact
   edge_query_.assign(n, 0);
   node_boundary_edges_.assign(n, {});
   for (int i = 0; i < n; ++i) constrained_node_[i] = constrained[3 * i];
-  for (const Tri& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) query_[t[k]] = 1;
+  for (int i = 0; i < n; ++i) query_[i] = topology_.has_triangles(i);
   const auto& edges = topology_.edges();
   for (size_t e = 0; e < edges.size(); ++e)
     if (topology_.boundary_edge()[e] && opt_.edge_contact)
@@ -55,25 +54,23 @@ void PenaltyContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) cons
 
 bool PenaltyContactTerm::update_couplings(const VecX& x) {
   bool stale = built_at_.size() != x.size();
-  const double verlet_step = 0.25 * (detection_ - opt_.separation);
-  for (int i = 0; !stale && i < x.size() / 3; ++i) stale = (node3(x, i) - node3(built_at_, i)).norm() > verlet_step;
+  for (int i = 0; !stale && i < x.size() / 3; ++i) stale = (node3(x, i) - node3(built_at_, i)).norm() > verlet_step();
   if (stale) rebuild_candidates(x);
-  // The pattern needs the pairs active here, where the Jacobian is evaluated; it only
-  // grows, so that a pair leaving contact does not force a symbolic re-analysis.
-  std::vector<Contact> contacts;
-  active_contacts(x, contacts);
+  // The pattern needs the pairs active here, where the Jacobian is evaluated.
+  active_contacts(x, contacts_);
+  contacts_x_ = x;
   std::vector<std::pair<int, int>> coupled;
-  for (const Contact& c : contacts)
-    for (int j = 0; j < c.count; ++j)
-      for (int l = j + 1; l < c.count; ++l)
-        coupled.emplace_back(std::min(c.nodes[j], c.nodes[l]), std::max(c.nodes[j], c.nodes[l]));
-  std::sort(coupled.begin(), coupled.end());
-  coupled.erase(std::unique(coupled.begin(), coupled.end()), coupled.end());
-  std::vector<std::pair<int, int>> merged;
-  std::set_union(coupled_.begin(), coupled_.end(), coupled.begin(), coupled.end(), std::back_inserter(merged));
-  const bool changed = merged.size() != coupled_.size();
-  coupled_ = std::move(merged);
-  return changed;
+  for (const Contact& c : contacts_)
+    for (int j = 0; j < 4; ++j)
+      for (int l = j + 1; l < 4; ++l) coupled.emplace_back(std::min(c.nodes[j], c.nodes[l]), std::max(c.nodes[j], c.nodes[l]));
+  return grow_couplings(coupled_, std::move(coupled));
+}
+
+const std::vector<PenaltyContactTerm::Contact>& PenaltyContactTerm::contacts_at(const VecX& x,
+                                                                                 std::vector<Contact>& scratch) const {
+  if (contacts_x_.size() == x.size() && contacts_x_ == x) return contacts_;
+  active_contacts(x, scratch);
+  return scratch;
 }
 
 void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
@@ -169,16 +166,10 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
         if (c.w.minCoeff() <= 1e-9) continue;
         size_t first = k;
         while (first > 0 && near[first - 1].leaflet == c.leaflet) --first;
-        const Tri& t0 = tris[near[first].triangle];
-        const Tri& t1 = tris[c.triangle];
-        bool shares = false;
-        for (int u = 0; u < 3; ++u)
-          for (int v = 0; v < 3; ++v) shares |= t0[u] == t1[v];
-        if (shares) continue;
+        if (share_vertex(tris[near[first].triangle], tris[c.triangle])) continue;
       }
       Contact ct;
       const Tri& tri = tris[c.triangle];
-      ct.count = 4;
       ct.nodes[0] = i, ct.weights[0] = 1;
       for (int j = 0; j < 3; ++j) ct.nodes[j + 1] = tri[j], ct.weights[j + 1] = -c.w[j];
       ct.distance = c.d;
@@ -205,7 +196,6 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     const double dist = diff.norm();
     if (dist >= delta) continue;
     Contact ct;
-    ct.count = 4;
     ct.nodes[0] = a, ct.nodes[1] = b, ct.nodes[2] = c, ct.nodes[3] = d;
     ct.weights[0] = 1 - s, ct.weights[1] = s, ct.weights[2] = -(1 - u), ct.weights[3] = -u;
     ct.distance = dist;
@@ -215,29 +205,29 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
 }
 
 void PenaltyContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
-  std::vector<Contact> contacts;
-  active_contacts(s.x, contacts);
+  std::vector<Contact> scratch;
+  const std::vector<Contact>& contacts = contacts_at(s.x, scratch);
   const double k = opt_.stiffness, delta = opt_.separation;
   stats_.active_pairs = static_cast<long>(contacts.size());
   stats_.closest_distance = -1;
   stats_.deepest_penetration = 0;
   for (const Contact& c : contacts) {
     stats_.closest_distance = stats_.closest_distance < 0 ? c.distance : std::min(stats_.closest_distance, c.distance);
-    stats_.deepest_penetration = std::max(stats_.deepest_penetration, delta - c.distance);
     const double gap = delta - c.distance;
+    stats_.deepest_penetration = std::max(stats_.deepest_penetration, gap);
     const double magnitude = k * gap * gap / delta, slope = 2 * k * gap / delta;
-    for (int j = 0; j < c.count; ++j) node3(f, c.nodes[j]) += magnitude * c.weights[j] * c.normal;
+    for (int j = 0; j < 4; ++j) node3(f, c.nodes[j]) += magnitude * c.weights[j] * c.normal;
     if (!dfdx) continue;
     const Mat3 nn = c.normal * c.normal.transpose();
-    for (int j = 0; j < c.count; ++j)
-      for (int l = 0; l < c.count; ++l)
+    for (int j = 0; j < 4; ++j)
+      for (int l = 0; l < 4; ++l)
         dfdx->add(c.nodes[j], c.nodes[l], (-slope * c.weights[j] * c.weights[l]) * nn);
   }
 }
 
 bool PenaltyContactTerm::energy(const State& s, double& e) const {
-  std::vector<Contact> contacts;
-  active_contacts(s.x, contacts);
+  std::vector<Contact> scratch;
+  const std::vector<Contact>& contacts = contacts_at(s.x, scratch);
   e = 0;
   for (const Contact& c : contacts) e += opt_.stiffness * std::pow(opt_.separation - c.distance, 3) / (3 * opt_.separation);
   return true;

@@ -75,7 +75,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
   std::string name() const override { return "contact"; }
   void couplings(std::vector<std::pair<int, int>>& pairs) const override;
   bool update_couplings(const VecX& x) override;
-  double max_step_length() const override { return std::min(0.25 * (detection_ - opt_.separation), 0.4 * opt_.separation); }
+  double max_step_length() const override { return std::min(verlet_step(), 0.4 * opt_.separation); }
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
   bool energy(const State& s, double& e) const override;
 
@@ -83,16 +83,21 @@ class PenaltyContactTerm final : public ContactForceTerm {
   double detection_distance() const override { return detection_; }
 
  private:
-  /// An active pair: up to four nodes, their weights (∇d = weight · n per node), distance.
+  /// An active pair: its four nodes (node + triangle, or two edges), their weights
+  /// (∇d = weight · n per node), the unit normal n and the distance.
   struct Contact {
     int nodes[4];
     double weights[4];
-    int count;
     Vec3 normal;
     double distance;
   };
   void active_contacts(const VecX& x, std::vector<Contact>& out) const;
+  /// The active contacts at x: those found by the last update_couplings if x is where it
+  /// ran (a Jacobian evaluation asks twice at one state), else computed afresh into `scratch`.
+  const std::vector<Contact>& contacts_at(const VecX& x, std::vector<Contact>& scratch) const;
   void rebuild_candidates(const VecX& x);
+  /// Largest node motion the candidate list tolerates before a rebuild: (D − δ)/4.
+  double verlet_step() const { return 0.25 * (detection_ - opt_.separation); }
 
   PenaltyContactOptions opt_;
   ContactTopology topology_;
@@ -100,12 +105,14 @@ class PenaltyContactTerm final : public ContactForceTerm {
   std::vector<char> constrained_node_;
   std::vector<char> query_;        // nodes with at least one triangle
   std::vector<char> edge_query_;   // nodes on a boundary edge
-  std::vector<std::vector<int>> node_boundary_edges_;  // per node, indices into boundary_edges()
+  std::vector<std::vector<int>> node_boundary_edges_;  // per node, its boundary edges (indices into edges())
   std::vector<std::vector<int>> triangle_edges_;       // per triangle, indices into edges()
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted
   std::vector<std::pair<int, int>> edge_pairs_;        // (boundary edge, edge) candidates
   std::vector<std::pair<int, int>> coupled_;
   VecX built_at_;  // positions when the candidate list was built (empty: never)
+  VecX contacts_x_;                 // where update_couplings last found the active contacts
+  std::vector<Contact> contacts_;   // and what it found
   mutable ContactStatistics stats_;
 };
 
