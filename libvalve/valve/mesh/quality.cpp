@@ -1,5 +1,7 @@
 #include "valve/mesh/quality.hpp"
 
+#include "valve/mesh/topology.hpp"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -31,6 +33,42 @@ QualitySummary summarize_quality(const std::vector<double>& q) {
   }
   s.mean = sum / q.size();
   return s;
+}
+
+MeshShapeReport describe_mesh_shape(const TriMesh& mesh) {
+  MeshShapeReport r;
+  r.nodes = mesh.num_nodes();
+  r.triangles = mesh.num_triangles();
+  r.quality = summarize_quality(triangle_qualities(mesh.points, mesh.triangles));
+  const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
+  r.boundary_loops = static_cast<int>(topo.loops.size());
+  r.non_manifold_edges = topo.non_manifold_edges;
+  std::vector<int> valence(mesh.num_nodes(), 0), boundary_edges(mesh.num_nodes(), 0), fan_triangles(mesh.num_nodes(), 0);
+  for (const Edge& e : topo.edges) {
+    ++valence[e.a];
+    ++valence[e.b];
+    if (e.tris[1] < 0) ++boundary_edges[e.a], ++boundary_edges[e.b];
+  }
+  for (const Tri& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) ++fan_triangles[t[k]];
+  // One fan: an interior vertex has as many edges as triangles, a boundary vertex one more
+  // edge than triangles and exactly two boundary edges.
+  double sum = 0;
+  int interior = 0;
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    if (fan_triangles[i] == 0) continue;
+    const bool fan = boundary_edges[i] == 0 ? valence[i] == fan_triangles[i]
+                                            : boundary_edges[i] == 2 && valence[i] == fan_triangles[i] + 1;
+    r.non_manifold_vertices += !fan;
+    if (boundary_edges[i] == 0) sum += valence[i], ++interior;
+  }
+  r.mean_interior_valence = interior ? sum / interior : 0;
+  r.quality_min_away_from_boundary = 1;
+  for (const Tri& t : mesh.triangles)
+    if (!boundary_edges[t[0]] && !boundary_edges[t[1]] && !boundary_edges[t[2]])
+      r.quality_min_away_from_boundary = std::min(
+          r.quality_min_away_from_boundary, triangle_quality(mesh.points.row(t[0]), mesh.points.row(t[1]), mesh.points.row(t[2])));
+  return r;
 }
 
 }  // namespace valve

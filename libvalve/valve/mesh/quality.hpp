@@ -16,4 +16,17 @@ struct QualitySummary {
 };
 QualitySummary summarize_quality(const std::vector<double>& q);
 
+/// What a remeshed membrane is judged by (seed 5.2.2: near-equilateral, six edges per node).
+struct MeshShapeReport {
+  int nodes = 0, triangles = 0;
+  QualitySummary quality;
+  double quality_min_away_from_boundary = 0;  // over triangles without a boundary node
+  double mean_interior_valence = 0;  // edges per interior node (6 for a regular mesh)
+  int boundary_loops = 0;
+  int non_manifold_edges = 0;     // shared by more than two triangles
+  int non_manifold_vertices = 0;  // whose triangles do not form one fan
+  bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0; }
+};
+MeshShapeReport describe_mesh_shape(const TriMesh& mesh);
+
 }  // namespace valve

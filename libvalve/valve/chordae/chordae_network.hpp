@@ -1,0 +1,48 @@
+#pragma once
+// The chordae tendineae as a graph (seed 5.2.2): every segment end is a mesh node of the
+// leaflets (an insertion), a papillary muscle tip or a branch point. Segments are typed
+// primary (to the free edge), secondary (to the ventricular surface of the belly) or strut
+// (the two thick anterior chords).
+//
+// JSON form (chordae.json), physical coordinates in mm (LPS):
+//   {"diameter_mm": 0.5,
+//    "points": [{"kind": "papillary_tip"|"branch"|"insertion", "position": [x, y, z],
+//                "mesh_node": i (insertions; -1 if not snapped yet), "name": "..."}, ...],
+//    "segments": [{"from": i, "to": j, "type": "primary"|"secondary"|"strut"}, ...]}
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "valve/core/types.hpp"
+
+namespace valve {
+
+enum class ChordPointKind { papillary_tip, branch, insertion };
+enum class ChordType { primary, secondary, strut };
+
+struct ChordPoint {
+  ChordPointKind kind = ChordPointKind::branch;
+  Vec3 position = Vec3::Zero();
+  int mesh_node = -1;
+  std::string name;
+};
+
+struct ChordSegment {
+  int from = 0, to = 0;
+  ChordType type = ChordType::primary;
+};
+
+struct ChordaeNetwork {
+  std::vector<ChordPoint> points;
+  std::vector<ChordSegment> segments;
+  double diameter = 0.5;  // mm (seed Table 5.1)
+
+  int count(ChordType type) const;
+  int count(ChordPointKind kind) const;
+};
+
+const char* to_string(ChordPointKind kind);
+const char* to_string(ChordType type);
+nlohmann::json to_json(const ChordaeNetwork& network);
+
+}  // namespace valve

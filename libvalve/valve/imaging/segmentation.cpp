@@ -1,0 +1,284 @@
+// ITK headers come first: ITK bundles an older Eigen (itkeigen) under the same include
+// guards, and its Geometry module only compiles when its own Core was included first.
+#include <itkBinaryBallStructuringElement.h>
+#include <itkBinaryMorphologicalClosingImageFilter.h>
+#include <itkBinaryMorphologicalOpeningImageFilter.h>
+#include <itkBinaryThresholdImageFilter.h>
+#include <itkConnectedComponentImageFilter.h>
+#include <itkCurvatureAnisotropicDiffusionImageFilter.h>
+#include <itkMedianImageFilter.h>
+#include <itkOtsuThresholdImageFilter.h>
+#include <itkRegionOfInterestImageFilter.h>
+#include <itkRelabelComponentImageFilter.h>
+#include <itkSmoothingRecursiveGaussianImageFilter.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+#include "valve/imaging/segmentation.hpp"
+#include "valve/core/error.hpp"
+#include "valve/io/itk_image.hpp"
+
+namespace valve {
+namespace {
+
+using FloatImage = itk::Image<float, 3>;
+using MaskImage = itk::Image<std::uint8_t, 3>;
+using LabelImage = itk::Image<std::uint32_t, 3>;
+using Ball = itk::BinaryBallStructuringElement<std::uint8_t, 3>;
+
+// A ball of physical radius r as voxel radii per axis; false if it is under one voxel on an axis.
+bool ball_of(double radius_mm, const ImageGeometry& g, Ball* ball) {
+  Ball::SizeType r;
+  for (int a = 0; a < 3; ++a) {
+    const long n = std::lround(radius_mm / g.spacing[a]);
+    if (n < 1) return false;
+    r[a] = static_cast<itk::SizeValueType>(n);
+  }
+  ball->SetRadius(r);
+  ball->CreateStructuringElement();
+  return true;
+}
+
+FloatImage::Pointer crop(FloatImage::Pointer image, const SegmentationOptions& o, const ImageGeometry& g) {
+  if (!o.crop) return image;
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 corner((c & 1) ? o.crop_hi.x() : o.crop_lo.x(), (c & 2) ? o.crop_hi.y() : o.crop_lo.y(),
+                      (c & 4) ? o.crop_hi.z() : o.crop_lo.z());
+    const Vec3 idx = g.continuous_index(corner);
+    lo = lo.cwiseMin(idx);
+    hi = hi.cwiseMax(idx);
+  }
+  FloatImage::IndexType start;
+  FloatImage::SizeType size;
+  for (int a = 0; a < 3; ++a) {
+    const long from = std::max(0L, static_cast<long>(std::ceil(lo[a] - 1e-9)));
+    const long to = std::min<long>(g.size[a] - 1, static_cast<long>(std::floor(hi[a] + 1e-9)));
+    if (to - from < 1) throw_input_error("segmentation", "crop", "a box overlapping the image by at least 2 voxels per axis",
+                                         "an overlap of " + std::to_string(std::max(0L, to - from + 1)) + " voxels on axis " + std::to_string(a));
+    start[a] = from;
+    size[a] = static_cast<itk::SizeValueType>(to - from + 1);
+  }
+  auto roi = itk::RegionOfInterestImageFilter<FloatImage, FloatImage>::New();
+  roi->SetInput(image);
+  roi->SetRegionOfInterest(FloatImage::RegionType(start, size));
+  roi->Update();
+  return roi->GetOutput();
+}
+
+FloatImage::Pointer denoise(FloatImage::Pointer image, const SegmentationOptions& o) {
+  if (o.denoise == "gaussian" && o.gaussian_sigma > 0) {
+    auto f = itk::SmoothingRecursiveGaussianImageFilter<FloatImage, FloatImage>::New();
+    f->SetInput(image);
+    f->SetSigma(o.gaussian_sigma);
+    f->Update();
+    image = f->GetOutput();
+  } else if (o.denoise == "median" && o.median_radius > 0) {
+    auto f = itk::MedianImageFilter<FloatImage, FloatImage>::New();
+    f->SetInput(image);
+    FloatImage::SizeType r;
+    r.Fill(static_cast<itk::SizeValueType>(o.median_radius));
+    f->SetRadius(r);
+    f->Update();
+    image = f->GetOutput();
+  }
+  if (o.diffusion_iterations > 0) {
+    auto f = itk::CurvatureAnisotropicDiffusionImageFilter<FloatImage, FloatImage>::New();
+    f->SetInput(image);
+    f->SetNumberOfIterations(static_cast<unsigned>(o.diffusion_iterations));
+    f->SetConductanceParameter(o.diffusion_conductance);
+    // Stable explicit step for 3-D: 1/2^(N+1) times the smallest spacing.
+    f->SetTimeStep(0.0625 * std::min({image->GetSpacing()[0], image->GetSpacing()[1], image->GetSpacing()[2]}));
+    f->Update();
+    image = f->GetOutput();
+  }
+  return image;
+}
+
+// Connected components (face-connected), relabelled by decreasing size, pieces under
+// min_voxels dropped.
+LabelImage::Pointer components(MaskImage::Pointer mask, std::size_t min_voxels, bool full_connectivity) {
+  auto cc = itk::ConnectedComponentImageFilter<MaskImage, LabelImage>::New();
+  cc->SetInput(mask);
+  cc->SetFullyConnected(full_connectivity);
+  auto relabel = itk::RelabelComponentImageFilter<LabelImage, LabelImage>::New();
+  relabel->SetInput(cc->GetOutput());
+  relabel->SetMinimumObjectSize(min_voxels);
+  relabel->Update();
+  return relabel->GetOutput();
+}
+
+std::string format_point(const Vec3& p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.2f, %.2f, %.2f) mm", p.x(), p.y(), p.z());
+  return buf;
+}
+
+}  // namespace
+
+void SegmentationOptions::validate(const std::string& where) const {
+  if (denoise != "none" && denoise != "gaussian" && denoise != "median")
+    throw_input_error(where, "denoise", "none|gaussian|median", "\"" + denoise + "\"");
+  if (threshold_method != "otsu" && threshold_method != "explicit")
+    throw_input_error(where, "threshold", "otsu or a grey value", "\"" + threshold_method + "\"");
+  if (!(gaussian_sigma >= 0)) throw_input_error(where, "gaussian_sigma", "a length >= 0 mm", std::to_string(gaussian_sigma));
+  if (median_radius < 0 || median_radius > 10) throw_input_error(where, "median_radius", "0..10 voxels", std::to_string(median_radius));
+  if (diffusion_iterations < 0 || diffusion_iterations > 1000)
+    throw_input_error(where, "diffusion_iterations", "0..1000", std::to_string(diffusion_iterations));
+  if (!(closing_radius >= 0)) throw_input_error(where, "closing_radius", "a length >= 0 mm", std::to_string(closing_radius));
+  if (!(chordae_opening_radius >= 0))
+    throw_input_error(where, "chordae_opening_radius", "a length >= 0 mm", std::to_string(chordae_opening_radius));
+  if (!(min_component_mm3 >= 0)) throw_input_error(where, "min_component_mm3", "a volume >= 0", std::to_string(min_component_mm3));
+  if (!(max_foreground_fraction > 0 && max_foreground_fraction <= 1))
+    throw_input_error(where, "max_foreground_fraction", "a fraction in (0, 1]", std::to_string(max_foreground_fraction));
+  if (crop && !(crop_hi.array() > crop_lo.array()).all()) throw_input_error(where, "crop", "a box with max > min on every axis", "an empty box");
+}
+
+LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, SegmentationSummary* summary) {
+  o.validate("segmentation");
+  SegmentationSummary s;
+  const ImageGeometry& g0 = volume.geometry;
+  const double ratio = g0.spacing.maxCoeff() / g0.spacing.minCoeff();
+  if (ratio > o.max_spacing_ratio) {
+    char found[128];
+    std::snprintf(found, sizeof found, "%.3g x %.3g x %.3g mm (ratio %.1f)", g0.spacing.x(), g0.spacing.y(), g0.spacing.z(), ratio);
+    throw_input_error("segmentation", "spacing", "voxels with largest/smallest spacing <= " + std::to_string(o.max_spacing_ratio).substr(0, 4) + " (resample first)", found);
+  }
+
+  FloatImage::Pointer image = crop(volume_to_itk<float>(volume), o, g0);
+  const ImageGeometry g = itk_geometry(*image);
+  s.cropped = g;
+  image = denoise(image, o);
+
+  if (o.threshold_method == "otsu") {
+    auto otsu = itk::OtsuThresholdImageFilter<FloatImage, MaskImage>::New();
+    otsu->SetInput(image);
+    otsu->SetNumberOfHistogramBins(256);
+    otsu->Update();
+    s.threshold = otsu->GetThreshold();
+  } else {
+    s.threshold = o.threshold;
+  }
+  auto binarize = itk::BinaryThresholdImageFilter<FloatImage, MaskImage>::New();
+  binarize->SetInput(image);
+  binarize->SetLowerThreshold(static_cast<float>(s.threshold));
+  binarize->SetInsideValue(1);
+  binarize->SetOutsideValue(0);
+  binarize->Update();
+  MaskImage::Pointer tissue = binarize->GetOutput();
+
+  const std::size_t n = g.voxel_count();
+  auto count = [n](const MaskImage* m) {
+    const auto* p = m->GetBufferPointer();
+    return static_cast<std::size_t>(std::count(p, p + n, std::uint8_t(1)));
+  };
+  const std::size_t raw = count(tissue);
+  char thr[64];
+  std::snprintf(thr, sizeof thr, "%.4g", s.threshold);
+  if (raw == 0) throw_input_error("segmentation", "threshold", "tissue brighter than the threshold", std::string("no voxel above ") + thr + " (empty segmentation)");
+  if (raw > o.max_foreground_fraction * n) {
+    char found[128];
+    std::snprintf(found, sizeof found, "threshold %s keeps %.0f %% of the voxels", thr, 100.0 * raw / n);
+    throw_input_error("segmentation", "threshold", "a threshold separating tissue from background (at most " +
+                      std::to_string(int(100 * o.max_foreground_fraction)) + " % tissue)", found);
+  }
+
+  Ball ball;
+  if (o.closing_radius > 0 && ball_of(o.closing_radius, g, &ball)) {
+    auto close = itk::BinaryMorphologicalClosingImageFilter<MaskImage, MaskImage, Ball>::New();
+    close->SetInput(tissue);
+    close->SetKernel(ball);
+    close->SetForegroundValue(1);
+    close->Update();
+    tissue = close->GetOutput();
+  }
+  s.voxels_tissue = count(tissue);
+
+  MaskImage::Pointer core = tissue;
+  s.chordae_separated = o.chordae_opening_radius > 0 && ball_of(o.chordae_opening_radius, g, &ball);
+  if (s.chordae_separated) {
+    auto open = itk::BinaryMorphologicalOpeningImageFilter<MaskImage, MaskImage, Ball>::New();
+    open->SetInput(tissue);
+    open->SetKernel(ball);
+    open->SetForegroundValue(1);
+    open->Update();
+    core = open->GetOutput();
+  }
+  const double voxel_mm3 = g.spacing.prod();
+  const auto min_voxels = static_cast<std::size_t>(std::ceil(o.min_component_mm3 / voxel_mm3));
+  LabelImage::Pointer parts = components(core, std::max<std::size_t>(min_voxels, 1), false);
+  const std::uint32_t* part = parts->GetBufferPointer();
+  s.components = static_cast<int>(*std::max_element(part, part + n));
+  if (s.components == 0) throw_input_error("segmentation", "threshold", "tissue pieces larger than min_component_mm3", "only noise-sized pieces");
+
+  std::set<std::uint32_t> leaflet_parts;
+  if (o.seeds.empty()) {
+    leaflet_parts.insert(1);  // the largest
+  } else {
+    for (const Vec3& seed : o.seeds) {
+      const Vec3 ci = g.continuous_index(seed);
+      const long i = std::lround(ci.x()), j = std::lround(ci.y()), k = std::lround(ci.z());
+      if (i < 0 || j < 0 || k < 0 || i >= g.size[0] || j >= g.size[1] || k >= g.size[2])
+        throw_input_error("segmentation", "seeds", "seed points inside the (cropped) image", format_point(seed));
+      // The nearest component label within 2 voxels: seeds are picked on thin sheets.
+      std::uint32_t found = 0;
+      double best = 1e300;
+      for (long dk = -2; dk <= 2; ++dk)
+        for (long dj = -2; dj <= 2; ++dj)
+          for (long di = -2; di <= 2; ++di) {
+            const long a = i + di, b = j + dj, c = k + dk;
+            if (a < 0 || b < 0 || c < 0 || a >= g.size[0] || b >= g.size[1] || c >= g.size[2]) continue;
+            const std::uint32_t l = part[g.linear_index(int(a), int(b), int(c))];
+            const double d2 = double(di * di + dj * dj + dk * dk);
+            if (l != 0 && d2 < best) best = d2, found = l;
+          }
+      if (found == 0) throw_input_error("segmentation", "seeds", "seed points on the leaflet tissue", format_point(seed) + " lies in the background");
+      leaflet_parts.insert(found);
+    }
+  }
+  s.leaflet_components = static_cast<int>(leaflet_parts.size());
+
+  LabelMap out{g, std::vector<std::uint8_t>(n, label_background)};
+  for (std::size_t v = 0; v < n; ++v)
+    if (part[v] != 0) out.labels[v] = leaflet_parts.count(part[v]) ? label_leaflet : label_other_tissue;
+
+  if (s.chordae_separated) {
+    // What the opening removed: large pieces are chordae, crumbs return to the leaflet.
+    auto residual = MaskImage::New();
+    set_itk_geometry(*residual, g);
+    residual->Allocate();
+    std::uint8_t* r = residual->GetBufferPointer();
+    const std::uint8_t* t = tissue->GetBufferPointer();
+    const std::uint8_t* c = core->GetBufferPointer();
+    for (std::size_t v = 0; v < n; ++v) r[v] = (t[v] && !c[v]) ? 1 : 0;
+    LabelImage::Pointer pieces = components(residual, 1, true);
+    const std::uint32_t* piece = pieces->GetBufferPointer();
+    const std::uint32_t piece_count = n ? *std::max_element(piece, piece + n) : 0;
+    std::vector<std::size_t> piece_size(piece_count + 1, 0);
+    for (std::size_t v = 0; v < n; ++v) ++piece_size[piece[v]];
+    // A chord is at least a few chord diameters long: 4 π r² · 4 r worth of voxels.
+    const double radius = o.chordae_opening_radius;
+    const auto chord_min = static_cast<std::size_t>(std::ceil(16 * 3.14159 * radius * radius * radius / voxel_mm3));
+    std::vector<char> is_chord(piece_count + 1, 0);
+    for (std::uint32_t p = 1; p <= piece_count; ++p)
+      if (piece_size[p] >= chord_min) is_chord[p] = 1, ++s.chordae_pieces;
+    for (std::size_t v = 0; v < n; ++v) {
+      if (!piece[v]) continue;
+      if (is_chord[piece[v]]) out.labels[v] = label_chordae;
+      else if (out.labels[v] == label_background) out.labels[v] = label_leaflet;
+    }
+  }
+  for (std::uint8_t l : out.labels) {
+    if (l == label_leaflet) ++s.voxels_leaflet;
+    else if (l == label_chordae) ++s.voxels_chordae;
+    else if (l == label_other_tissue) ++s.voxels_other;
+  }
+  if (summary) *summary = s;
+  return out;
+}
+
+}  // namespace valve

@@ -1,0 +1,54 @@
+#pragma once
+// From the closed surface of a thick leaflet sheet (both faces and the rim, as triangulated
+// from a scan) to the leaflet membrane the mechanics needs (seed 5.2.2 keeps the atrial
+// surface of the open valve):
+//   1. A face belongs to the atrial side when its outward normal points toward an atrial
+//      viewpoint V = c + 2 D a (c the centroid, D the bounding-box diagonal, a the atrial
+//      direction): n · (V − x) > 0. For an open funnel-shaped valve and a closed domed one the
+//      atrial face is the one facing up the valve axis; the ventricular face looks away.
+//   2. The labels are smoothed by majority votes over edge neighbours, so that the rim splits
+//      cleanly and noise does not leave islands.
+//   3. The selected faces are split into connected pieces; pieces under a fraction of the
+//      largest one's area are dropped.
+//   4. Optionally every node moves half the thickness against its (area-weighted) normal,
+//      from the atrial surface to the mid-surface the membrane model assumes.
+// The atrial direction is given, or estimated: the valve is wider than it is deep, so the
+// axis is the direction of least spread of the points (PCA), signed so that the wider part
+// (the annulus) is atrial.
+#include <optional>
+
+#include "valve/mesh/tri_mesh.hpp"
+
+namespace valve {
+
+struct MembraneOptions {
+  std::optional<Vec3> atrial_direction;
+  double mid_surface_offset = 0;       // mm, usually half the leaflet thickness
+  int smoothing_passes = 10;
+  double min_piece_fraction = 0.05;    // of the largest piece's area
+};
+
+struct MembraneSummary {
+  Vec3 atrial_direction = Vec3::UnitZ();
+  bool direction_estimated = false;
+  int faces_in = 0, faces_kept = 0;
+  int pieces_kept = 0, pieces_dropped = 0;
+  double area_mm2 = 0;
+};
+
+/// Throws InputError if nothing faces the atrium.
+TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& options, MembraneSummary* summary);
+
+/// PCA axis of least spread, signed so that points far from the axis lie on its positive side.
+Vec3 estimate_atrial_direction(const MatX3& points);
+
+/// Area-weighted unit vertex normals (by winding).
+MatX3 vertex_normals(const MatX3& points, const std::vector<Tri>& triangles);
+
+/// Marks boundary loops: the loop lying farthest along `atrial_direction` (mean height) is the
+/// annulus (NodeRole fixed, BoundaryType attached); every other loop is free edge. Sets fibers
+/// circumferential about the axis through the centroid along `atrial_direction`. Returns the
+/// number of loops.
+int mark_annulus_and_free_edge(TriMesh& mesh, const Vec3& atrial_direction);
+
+}  // namespace valve

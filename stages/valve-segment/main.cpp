@@ -1,0 +1,104 @@
+// valve-segment IMAGE --out DIR [--config FILE.json] [--name labels]
+//               [--crop-min x,y,z --crop-max x,y,z] [--denoise gaussian|median|none]
+//               [--gaussian-sigma 0.15] [--median-radius 1] [--diffusion-iterations 0]
+//               [--threshold otsu|VALUE] [--seed x,y,z ...] [--closing-radius 0.2]
+//               [--chordae-opening-radius 0.3] [--min-component 0.5] [--max-memory GB] [--quiet]
+// IMAGE: .nrrd .nhdr .mha .mhd .nii .nii.gz or a DICOM series directory. Writes the label
+// map DIR/NAME.nrrd (1 leaflet, 2 chordae, 3 other tissue) and segment.summary.json with the
+// threshold used, voxel counts and components. Physical coordinates (LPS, mm) throughout.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "valve/core/cli.hpp"
+#include "valve/core/error.hpp"
+#include "valve/core/stage_arguments.hpp"
+#include "valve/imaging/segmentation.hpp"
+#include "valve/io/image_io.hpp"
+
+using namespace valve;
+namespace fs = std::filesystem;
+
+namespace {
+// Half the available memory, from /proc/meminfo (0: unknown).
+double default_memory_limit() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key;
+  double kb = 0;
+  std::string unit;
+  while (meminfo >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb * 1024 / 2;
+  return 0;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  return run_stage("valve-segment", [&] {
+    const std::vector<std::string> keys = {"name", "crop_min", "crop_max", "denoise", "gaussian_sigma", "median_radius",
+                                           "diffusion_iterations", "threshold", "seed", "closing_radius",
+                                           "chordae_opening_radius", "min_component", "max_memory"};
+    CommandLine cl(argc, argv,
+                   {"out", "config", "name", "crop-min", "crop-max", "denoise", "gaussian-sigma", "median-radius",
+                    "diffusion-iterations", "threshold", "seed", "closing-radius", "chordae-opening-radius", "min-component",
+                    "max-memory"},
+                   {"quiet"});
+    if (cl.positional().size() != 1)
+      throw InputError("valve-segment: IMAGE: expected one image file or DICOM directory, found " +
+                       std::to_string(cl.positional().size()) + " arguments");
+    const fs::path image_file = cl.positional()[0];
+    const fs::path out = cl.require("out");
+    StageArguments args(cl, keys);
+    SegmentationOptions o;
+    const std::string name = args.text("name", "labels");
+    const auto crop_min = args.vector3("crop-min"), crop_max = args.vector3("crop-max");
+    if (bool(crop_min) != bool(crop_max))
+      throw InputError("valve-segment: --crop-min/--crop-max: expected both corners of the box, found one");
+    if (crop_min) o.crop = true, o.crop_lo = *crop_min, o.crop_hi = *crop_max;
+    o.denoise = args.choice("denoise", o.denoise, {"none", "gaussian", "median"});
+    o.gaussian_sigma = args.length_mm("gaussian-sigma", o.gaussian_sigma, 0, 10);
+    o.median_radius = static_cast<int>(args.integer("median-radius", o.median_radius, 0, 10));
+    o.diffusion_iterations = static_cast<int>(args.integer("diffusion-iterations", 0, 0, 1000));
+    const std::string threshold = args.text("threshold", "otsu");
+    if (threshold != "otsu") {
+      o.threshold_method = "explicit";
+      o.threshold = args.number("threshold", 0, -1e30, 1e30);
+    }
+    o.seeds = args.points("seed");
+    o.closing_radius = args.length_mm("closing-radius", o.closing_radius, 0, 20);
+    o.chordae_opening_radius = args.length_mm("chordae-opening-radius", o.chordae_opening_radius, 0, 20);
+    o.min_component_mm3 = args.number("min-component", o.min_component_mm3, 0, 1e9);
+    ImageReadOptions read;
+    read.max_bytes = args.number("max-memory", default_memory_limit() / 1e9, 0.001, 1e6) * 1e9;
+    read.working_copies = 6;  // float input, smoothed copy, masks and 32-bit component labels
+    o.validate("valve-segment");
+
+    const Volume volume = read_volume(image_file, read);
+    SegmentationSummary s;
+    const LabelMap labels = segment_valve(volume, o, &s);
+    fs::create_directories(out);
+    write_label_map(out / (name + ".nrrd"), labels);
+
+    StageSummary summary("segment", out);
+    summary.add_input("image", image_file);
+    summary.parameters() = args.used();
+    const double voxel = s.cropped.spacing.prod();
+    summary.metrics() = {
+        {"labels", name + ".nrrd"},
+        {"threshold", s.threshold},
+        {"threshold_method", o.threshold_method},
+        {"size", {s.cropped.size[0], s.cropped.size[1], s.cropped.size[2]}},
+        {"spacing_mm", {s.cropped.spacing.x(), s.cropped.spacing.y(), s.cropped.spacing.z()}},
+        {"voxels", {{"tissue", s.voxels_tissue}, {"leaflet", s.voxels_leaflet}, {"chordae", s.voxels_chordae}, {"other", s.voxels_other}}},
+        {"volume_mm3", {{"leaflet", s.voxels_leaflet * voxel}, {"chordae", s.voxels_chordae * voxel}, {"other", s.voxels_other * voxel}}},
+        {"components", s.components},
+        {"leaflet_components", s.leaflet_components},
+        {"chordae_separated", s.chordae_separated},
+        {"chordae_pieces", s.chordae_pieces}};
+    summary.write();
+    if (!cl.has("quiet"))
+      std::printf("valve-segment: threshold %.4g, leaflet %.1f mm3, chordae %.1f mm3 in %d pieces -> %s\n", s.threshold,
+                  s.voxels_leaflet * voxel, s.voxels_chordae * voxel, s.chordae_pieces, (out / (name + ".nrrd")).string().c_str());
+    return 0;
+  });
+}
