@@ -1,14 +1,15 @@
 // valve-remesh SURFACE --out DIR [--config FILE.json] [--name leaflets] [--triangles 650]
 //              [--method isotropic|collapse] [--atrial-direction x,y,z] [--thickness 1]
 //              [--no-offset] [--input-is-membrane] [--subdivide 0|1|2] [--reference TRUTH.vtp]
-//              [--quiet]
+//              [--write-membrane] [--quiet]
 // From the closed surface of the leaflet tissue (valve-triangulate) to the membrane the
 // simulation uses (seed 5.2.2): keep the atrial face, move it half the thickness toward the
 // mid-surface, remesh to ~650 near-equilateral triangles, mark the annulus (fixed, attached)
 // and the free edge, circumferential fibers. --input-is-membrane skips the extraction (the
 // input is already a mid-surface, e.g. a finite element model). --subdivide 1 also writes
 // NAME_x4.vtp, 2 also NAME_x16.vtp (seed 5.3.3). --reference measures the distance of every
-// node to a ground-truth surface. Writes remesh.summary.json with the quality table.
+// node to a ground-truth surface. --write-membrane also writes the extracted face before
+// remeshing (membrane.vtp), to see what the remesher was given. Writes remesh.summary.json with the quality table.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   return run_stage("valve-remesh", [&] {
     const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "thickness", "subdivide", "reference"};
     CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "thickness", "subdivide", "reference"},
-                   {"no-offset", "input-is-membrane", "quiet"});
+                   {"no-offset", "input-is-membrane", "write-membrane", "quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-remesh: SURFACE: expected one surface mesh, found " + std::to_string(cl.positional().size()) + " arguments");
     const fs::path surface_file = cl.positional()[0];
@@ -61,8 +62,8 @@ int main(int argc, char** argv) {
       throw InputError("valve-remesh: --atrial-direction: expected a non-zero vector, found 0,0,0");
     const double thickness = args.length_mm("thickness", 1.0, 0, 20);
     const bool offset = !cl.has("no-offset");
-    mo.mid_surface_offset = offset ? thickness / 2 : 0;
     const bool membrane_input = cl.has("input-is-membrane");
+    ro.mid_surface_offset = offset && !membrane_input ? thickness / 2 : 0;
     const int subdivide = static_cast<int>(args.integer("subdivide", 0, 0, 2));
     const std::string reference = args.text("reference", "");
 
@@ -95,7 +96,7 @@ int main(int argc, char** argv) {
     m["atrial_direction_estimated"] = ms.direction_estimated;
     m["extraction"] = {{"faces_in", ms.faces_in}, {"faces_kept", ms.faces_kept}, {"pieces_kept", ms.pieces_kept},
                        {"pieces_dropped", ms.pieces_dropped}, {"area_mm2", ms.area_mm2}};
-    m["remesh"] = {{"target_edge_length_mm", rs.target_edge_length}, {"attempts", rs.attempts}, {"holes_filled", rs.holes_filled}, {"border_repairs", rs.border_repairs}};
+    m["remesh"] = {{"target_edge_length_mm", rs.target_edge_length}, {"attempts", rs.attempts}, {"holes_filled", rs.holes_filled}, {"border_repairs", rs.border_repairs}, {"flap_triangles_cut", rs.flaps_cut}};
     int annulus_nodes = 0, free_edge_nodes = 0;
     for (BoundaryType b : mesh.boundary) annulus_nodes += b == BoundaryType::attached, free_edge_nodes += b == BoundaryType::free_edge;
     m["boundary_loops"] = loops;
@@ -129,6 +130,10 @@ int main(int argc, char** argv) {
       levels.push_back(entry);
     }
     m["meshes"] = levels;
+    if (cl.has("write-membrane")) {
+      write_mesh(out / "membrane.vtp", membrane);
+      m["membrane_file"] = "membrane.vtp";
+    }
     summary.write();
     if (!cl.has("quiet")) {
       const auto& e = levels[0];

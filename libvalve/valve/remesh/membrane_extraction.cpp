@@ -29,20 +29,6 @@ Vec3 estimate_atrial_direction(const MatX3& points) {
   return corr >= 0 ? axis : -axis;
 }
 
-MatX3 vertex_normals(const MatX3& points, const std::vector<Tri>& triangles) {
-  MatX3 n = MatX3::Zero(points.rows(), 3);
-  for (const Tri& t : triangles) {
-    const Vec3 a = points.row(t[0]), b = points.row(t[1]), c = points.row(t[2]);
-    const Vec3 area_normal = 0.5 * (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) n.row(t[k]) += area_normal.transpose();
-  }
-  for (Eigen::Index i = 0; i < n.rows(); ++i) {
-    const double len = n.row(i).norm();
-    if (len > 0) n.row(i) /= len;
-  }
-  return n;
-}
-
 TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o, MembraneSummary* summary) {
   MembraneSummary s;
   const int nf = surface.num_triangles();
@@ -79,6 +65,18 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
     }
     atrial.swap(next);
   }
+  // Morphological closing on the face graph (grow by n rings, shrink by n): fills the slits
+  // and notches the rim leaves in the atrial face, whose narrow necks no remesher can
+  // triangulate well.
+  auto grow = [&](bool value) {
+    std::vector<char> next = atrial;
+    for (int f = 0; f < nf; ++f)
+      for (int g : neighbours[f])
+        if (bool(atrial[g]) == value) next[f] = value;
+    atrial.swap(next);
+  };
+  for (int ring = 0; ring < o.closing_rings; ++ring) grow(true);
+  for (int ring = 0; ring < o.closing_rings; ++ring) grow(false);
   // Connected pieces of the atrial faces.
   std::vector<int> piece(nf, -1);
   std::vector<double> piece_area;
@@ -119,7 +117,6 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
   out.points.resize(count, 3);
   for (int i = 0; i < surface.num_nodes(); ++i)
     if (new_index[i] >= 0) out.points.row(new_index[i]) = surface.points.row(i);
-  if (o.mid_surface_offset != 0) out.points -= o.mid_surface_offset * vertex_normals(out.points, out.triangles);
   out.fill_defaults();
   s.faces_kept = out.num_triangles();
   for (const Tri& t : out.triangles) s.area_mm2 += triangle_area(out.points, t);

@@ -7,11 +7,10 @@
 //      direction): n · (V − x) > 0. For an open funnel-shaped valve and a closed domed one the
 //      atrial face is the one facing up the valve axis; the ventricular face looks away.
 //   2. The labels are smoothed by majority votes over edge neighbours, so that the rim splits
-//      cleanly and noise does not leave islands.
+//      cleanly and noise does not leave islands, then closed morphologically (grow n face
+//      rings, shrink n) so that slits and notches at the rim do not reach into the membrane.
 //   3. The selected faces are split into connected pieces; pieces under a fraction of the
 //      largest one's area are dropped.
-//   4. Optionally every node moves half the thickness against its (area-weighted) normal,
-//      from the atrial surface to the mid-surface the membrane model assumes.
 // The atrial direction is given, or estimated: the valve is wider than it is deep, so the
 // axis is the direction of least spread of the points (PCA), signed so that the wider part
 // (the annulus) is atrial.
@@ -23,8 +22,8 @@ namespace valve {
 
 struct MembraneOptions {
   std::optional<Vec3> atrial_direction;
-  double mid_surface_offset = 0;       // mm, usually half the leaflet thickness
   int smoothing_passes = 10;
+  int closing_rings = 2;               // face rings of the morphological closing of the selection
   double min_piece_fraction = 0.05;    // of the largest piece's area
 };
 
@@ -41,6 +40,7 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
 
 /// PCA axis of least spread, signed so that points far from the axis lie on its positive side.
 Vec3 estimate_atrial_direction(const MatX3& points);
+
 
 /// Area-weighted unit vertex normals (by winding).
 MatX3 vertex_normals(const MatX3& points, const std::vector<Tri>& triangles);

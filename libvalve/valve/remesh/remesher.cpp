@@ -4,7 +4,9 @@
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Polygon_mesh_processing/angle_and_area_smoothing.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
@@ -22,6 +24,7 @@
 #include <array>
 #include <cmath>
 #include <map>
+#include <set>
 
 #include "valve/core/error.hpp"
 
@@ -114,13 +117,17 @@ void smooth_borders(Mesh& m, int iterations) {
   }
 }
 
+// q = 4√3 a / (s1² + s2² + s3²), as in mesh/quality.hpp.
+double triangle_quality(const Point& a, const Point& b, const Point& c) {
+  const double sum = CGAL::squared_distance(a, b) + CGAL::squared_distance(b, c) + CGAL::squared_distance(c, a);
+  return sum > 0 ? 4 * std::sqrt(3.0) * std::sqrt(CGAL::squared_area(a, b, c)) / sum : 0;
+}
+
 double face_quality(const Mesh& m, Mesh::Face_index f) {
   std::array<Point, 3> p;
   int k = 0;
   for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) p[k++] = m.point(v);
-  const double area = std::sqrt(CGAL::squared_area(p[0], p[1], p[2]));
-  const double sum = CGAL::squared_distance(p[0], p[1]) + CGAL::squared_distance(p[1], p[2]) + CGAL::squared_distance(p[2], p[0]);
-  return sum > 0 ? 4 * std::sqrt(3.0) * area / sum : 0;
+  return triangle_quality(p[0], p[1], p[2]);
 }
 
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
@@ -211,12 +218,8 @@ int repair_border_slivers(Mesh& m, double min_quality) {
         for (auto v : CGAL::vertices_around_target(m.target(m.next(longest)), m)) exists = exists || v == m.target(m.next(m.opposite(longest)));
         if (exists) continue;
         const double before = std::min(face_quality(m, f), face_quality(m, m.face(m.opposite(longest))));
-        auto q = [](const Point& x, const Point& y, const Point& z) {
-          const double sum = CGAL::squared_distance(x, y) + CGAL::squared_distance(y, z) + CGAL::squared_distance(z, x);
-          return sum > 0 ? 4 * std::sqrt(3.0) * std::sqrt(CGAL::squared_area(x, y, z)) / sum : 0.0;
-        };
         // After the flip the triangles are (c, d, b)... sharing edge c-d; orientation is kept by Euler::flip_edge.
-        const double after = std::min(q(c, d, b), q(d, c, a));
+        const double after = std::min(triangle_quality(c, d, b), triangle_quality(d, c, a));
         // Refuse flips that fold the surface: the new triangles' normals must agree.
         const auto n1 = CGAL::cross_product(d - c, b - c), n2 = CGAL::cross_product(c - d, a - d);
         if (after > before && n1 * n2 > 0) {
@@ -232,6 +235,48 @@ int repair_border_slivers(Mesh& m, double min_quality) {
   return repairs;
 }
 
+// Cuts off flaps: pieces of the membrane joined to the rest only through an interior edge
+// whose two ends lie on the border and that is shorter than `max_neck`. Such necks come from
+// slits in the extracted atrial face (two voxel-scale border points almost touching); no
+// flip or collapse can make their triangles well shaped, and cutting the flap loses at most
+// `max_flap_faces` triangles of membrane. Returns the number of triangles removed.
+int cut_narrow_flaps(Mesh& m, double max_neck, std::size_t max_flap_faces) {
+  int removed = 0;
+  for (bool again = true; again;) {
+    again = false;
+    for (auto e : m.edges()) {
+      const auto h = m.halfedge(e);
+      if (m.is_border(h) || m.is_border(m.opposite(h)) || !m.is_border(m.source(h)) || !m.is_border(m.target(h))) continue;
+      if (CGAL::squared_distance(m.point(m.source(h)), m.point(m.target(h))) >= max_neck * max_neck) continue;
+      // Flood each side without crossing the neck; a side that stays small and never
+      // reaches the other side is a flap.
+      for (auto start : {h, m.opposite(h)}) {
+        std::vector<Mesh::Face_index> flap{m.face(start)}, stack{m.face(start)};
+        std::set<Mesh::Face_index> seen{m.face(start)};
+        bool separated = true;
+        while (!stack.empty() && separated && flap.size() <= max_flap_faces) {
+          const auto f = stack.back();
+          stack.pop_back();
+          for (auto g : CGAL::halfedges_around_face(m.halfedge(f), m)) {
+            if (m.edge(g) == e || m.is_border(m.opposite(g))) continue;
+            const auto next = m.face(m.opposite(g));
+            if (next == m.face(m.opposite(start))) separated = false;
+            if (seen.insert(next).second) flap.push_back(next), stack.push_back(next);
+          }
+        }
+        if (!separated || flap.size() > max_flap_faces) continue;
+        for (auto f : flap) CGAL::Euler::remove_face(m.halfedge(f), m);
+        removed += static_cast<int>(flap.size());
+        again = true;
+        break;
+      }
+      if (again) break;
+    }
+    m.collect_garbage();
+  }
+  return removed;
+}
+
 }  // namespace
 
 void RemeshOptions::validate(const std::string& where) const {
@@ -241,6 +286,8 @@ void RemeshOptions::validate(const std::string& where) const {
   if (!(tolerance > 0 && tolerance < 1)) throw_input_error(where, "tolerance", "a fraction in (0, 1)", std::to_string(tolerance));
   if (iterations < 1 || iterations > 100) throw_input_error(where, "iterations", "1..100", std::to_string(iterations));
   if (relaxation_steps < 0 || relaxation_steps > 100) throw_input_error(where, "relaxation_steps", "0..100", std::to_string(relaxation_steps));
+  if (!(max_neck >= 0 && max_neck < 1)) throw_input_error(where, "max_neck", "a fraction of the edge length in [0, 1)", std::to_string(max_neck));
+  if (!(min_border_quality >= 0 && min_border_quality < 1)) throw_input_error(where, "min_border_quality", "a quality in [0, 1)", std::to_string(min_border_quality));
   if (max_attempts < 1 || max_attempts > 50) throw_input_error(where, "max_attempts", "1..50", std::to_string(max_attempts));
 }
 
@@ -256,10 +303,19 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
   Tree tree(faces(input).first, faces(input).second, input);
   tree.accelerate_distance_queries();
   const int target = o.target_triangles;
+  // What remeshing leaves at the border, in order: narrow-necked flaps, slivers, and slivers'
+  // vertices that can still move. Returns the triangles cut; counts repairs in s.
+  auto clean_up = [&](Mesh& m, double edge_length) {
+    PMP::angle_and_area_smoothing(faces(m), m, PMP::parameters::number_of_iterations(5).use_area_smoothing(false));
+    const int cut = cut_narrow_flaps(m, o.max_neck * edge_length, 8);
+    s.border_repairs = repair_border_slivers(m, o.min_border_quality);
+    s.border_repairs += relax_sliver_vertices(m, tree, o.min_border_quality);
+    return cut;
+  };
 
   Mesh best;
   std::size_t best_error = std::size_t(-1);
-  int repairs = 0;
+  int repairs = 0, flaps = 0;
   if (o.method == "isotropic") {
     double length = std::sqrt(4 * area / (std::sqrt(3.0) * target));
     for (int attempt = 0; attempt < o.max_attempts; ++attempt) {
@@ -269,16 +325,16 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
                                    .number_of_relaxation_steps(static_cast<unsigned>(o.relaxation_steps))
                                    .relax_constraints(true));
       m.collect_garbage();
-      s.border_repairs = repair_border_slivers(m, o.min_border_quality);
-      s.border_repairs += relax_sliver_vertices(m, tree, o.min_border_quality);
+      s.flaps_cut = clean_up(m, length);
       ++s.attempts;
       const std::size_t found = m.number_of_faces();
       const std::size_t error = found > std::size_t(target) ? found - target : target - found;
-      if (error < best_error) best_error = error, best = m, s.target_edge_length = length, repairs = s.border_repairs;
+      if (error < best_error) best_error = error, best = m, s.target_edge_length = length, repairs = s.border_repairs, flaps = s.flaps_cut;
       if (error <= o.tolerance * target) break;
       length *= std::sqrt(double(found) / target);
     }
     s.border_repairs = repairs;
+    s.flaps_cut = flaps;
   } else {
     // Collapse to the edge count of the target: 3F = 2E − B, with the border count B
     // shrinking with the edge length.
@@ -291,10 +347,19 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
     SMS::edge_collapse(m, stop, CGAL::parameters::get_cost(SMS::Edge_length_cost<Mesh>()).get_placement(SMS::Midpoint_placement<Mesh>()));
     m.collect_garbage();
     PMP::tangential_relaxation(m, PMP::parameters::number_of_iterations(static_cast<unsigned>(10 * o.relaxation_steps)).relax_constraints(true));
-    s.border_repairs = repair_border_slivers(m, o.min_border_quality);
-    s.border_repairs += relax_sliver_vertices(m, tree, o.min_border_quality);
+    s.flaps_cut = clean_up(m, std::sqrt(4 * area / (std::sqrt(3.0) * target)));
     s.attempts = 1;
     best = m;
+  }
+  if (o.mid_surface_offset != 0) {
+    auto normals = best.add_property_map<Mesh::Vertex_index, K::Vector_3>("v:normal").first;
+    PMP::compute_vertex_normals(best, normals);
+    for (auto v : best.vertices()) best.point(v) = best.point(v) - o.mid_surface_offset * normals[v];
+    const Mesh offset = best;
+    Tree offset_tree(faces(offset).first, faces(offset).second, offset);
+    offset_tree.accelerate_distance_queries();
+    s.border_repairs += repair_border_slivers(best, o.min_border_quality);
+    s.border_repairs += relax_sliver_vertices(best, offset_tree, o.min_border_quality);
   }
   if (summary) *summary = s;
   return from_cgal(best);

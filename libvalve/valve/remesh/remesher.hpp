@@ -10,6 +10,10 @@
 //   collapse   the seed's route: shortest-edge collapses (Surface_mesh_simplification) down
 //              to the target, then tangential relaxation as equal-rest-length springs
 //              would do.
+// The mid-surface offset moves every node against its normal after remeshing, where the
+// normals are smooth at the scale of the edges (on the voxel-scale surface they turn sharply at
+// the border and the offset would fold it); the border slivers it makes where the surface
+// bends are repaired again on the offset surface.
 // Both first repair the input (orient, split non-manifold vertices) and fill holes whose
 // border is shorter than a fraction of the longest border (pinholes left by segmentation).
 #include <string>
@@ -25,9 +29,11 @@ struct RemeshOptions {
   int iterations = 8;              // isotropic remeshing passes per attempt
   int relaxation_steps = 3;        // tangential relaxation steps per pass (isotropic) or total ×10 (collapse)
   int max_attempts = 8;
-  double max_hole_fraction = 0.25;
-  int border_smoothing = 10;
-  double min_border_quality = 0.5;  // border slivers below this are cut off or merged       // smoothing passes along the input's borders (voxel zigzag)  // holes with a border shorter than this × longest border are filled
+  double max_hole_fraction = 0.25;  // holes with a border shorter than this × the longest border are filled
+  int border_smoothing = 10;        // smoothing passes along the input's borders (voxel zigzag)
+  double min_border_quality = 0.5;  // border slivers below this are cut off, merged or flipped
+  double mid_surface_offset = 0;    // mm (half the thickness): atrial surface -> mid-surface, after remeshing
+  double max_neck = 0.5;            // flaps joined to the membrane by a neck shorter than this × L are cut off
 
   void validate(const std::string& where) const;
 };
@@ -37,6 +43,7 @@ struct RemeshSummary {
   int attempts = 0;
   int holes_filled = 0;
   int border_repairs = 0;
+  int flaps_cut = 0;  // triangles of narrow-necked flaps removed
   int input_triangles = 0;
 };
 
