@@ -89,6 +89,7 @@ int main(int argc, char** argv) {
         {"threshold_method", o.threshold_method},
         {"size", {s.cropped.size[0], s.cropped.size[1], s.cropped.size[2]}},
         {"spacing_mm", {s.cropped.spacing.x(), s.cropped.spacing.y(), s.cropped.spacing.z()}},
+        {"origin_mm", {s.cropped.origin.x(), s.cropped.origin.y(), s.cropped.origin.z()}},
         {"voxels", {{"tissue", s.voxels_tissue}, {"leaflet", s.voxels_leaflet}, {"chordae", s.voxels_chordae}, {"other", s.voxels_other}}},
         {"volume_mm3", {{"leaflet", s.voxels_leaflet * voxel}, {"chordae", s.voxels_chordae * voxel}, {"other", s.voxels_other * voxel}}},
         {"components", s.components},

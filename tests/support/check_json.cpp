@@ -1,6 +1,6 @@
 // check_json FILE KEY.PATH MIN MAX [KEY.PATH MIN MAX ...]
 // Exits 0 if every number at the (dot-separated, array indices allowed) paths lies in
-// [MIN, MAX]; prints each value. Used by stage and pipeline tests to assert tolerances.
+// [MIN, MAX] (booleans count as 1 and 0); prints each value. Used by stage and pipeline tests to assert tolerances.
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
       }
     }
     const double lo = std::stod(argv[k + 1]), hi = std::stod(argv[k + 2]);
+    nlohmann::json as_number;
+    if (v->is_boolean()) as_number = v->get<bool>() ? 1 : 0, v = &as_number;
     if (!v->is_number()) {
       std::fprintf(stderr, "check_json: %s is not a number: %s\n", argv[k], v->dump().c_str());
       ++failures;

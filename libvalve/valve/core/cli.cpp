@@ -1,5 +1,7 @@
 #include "valve/core/cli.hpp"
 
+#include <sys/resource.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,6 +16,9 @@ namespace {
 double now_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+// A stage's wall time counts from its start (static initialization), not from when its
+// summary object is made, which stages do once the work is done.
+const double process_start = now_seconds();
 }  // namespace
 
 CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& flags,
@@ -94,7 +99,7 @@ std::string CommandLine::require(const std::string& flag) const {
 bool CommandLine::has(const std::string& flag) const { return values_.count(flag) > 0; }
 
 StageSummary::StageSummary(std::string stage, fs::path out_dir)
-    : stage_(std::move(stage)), out_(std::move(out_dir)), start_(now_seconds()) {
+    : stage_(std::move(stage)), out_(std::move(out_dir)), start_(process_start) {
   doc_ = {{"stage", stage_}, {"status", "ok"}, {"inputs", nlohmann::json::array()},
           {"parameters", nlohmann::json::object()}, {"metrics", nlohmann::json::object()}};
 }
@@ -121,6 +126,8 @@ int scrub_non_finite(nlohmann::json& j) {
 
 void StageSummary::write() {
   doc_["wall_time_s"] = now_seconds() - start_;
+  rusage usage{};
+  if (getrusage(RUSAGE_SELF, &usage) == 0) doc_["peak_memory_mb"] = usage.ru_maxrss / 1024.0;  // Linux: kB
   const int replaced = scrub_non_finite(doc_);
   if (replaced > 0) doc_["non_finite_values_replaced_by_null"] = replaced;
   write_file_atomic(out_ / (stage_ + ".summary.json"), doc_.dump(2) + "\n");

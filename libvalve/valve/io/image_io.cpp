@@ -6,6 +6,7 @@
 #include <itkImage.h>
 #include <itkImageFileReader.h>
 #include <itkImageFileWriter.h>
+#include <gdcmTrace.h>
 #include <itkImageIOFactory.h>
 #include <itkImageSeriesReader.h>
 #include <itkImportImageFilter.h>
@@ -38,6 +39,13 @@ void register_image_io() {
     itk::MetaImageIOFactory::RegisterOneFactory();
     itk::NiftiImageIOFactory::RegisterOneFactory();
     itk::GDCMImageIOFactory::RegisterOneFactory();
+    // GDCM prints multi-line warnings on stderr for tags it fills in itself (photometric
+    // interpretation, media storage); the stage contract is one line on failure and
+    // nothing on success, and real problems still reach us as ITK exceptions.
+    gdcm::Trace::WarningOff();
+    // ITK warns on stderr about unevenly spaced DICOM slices; read_itk turns that into the
+    // stage's one-line error instead.
+    itk::Object::GlobalWarningDisplayOff();
   });
 }
 
@@ -56,7 +64,7 @@ bool is_writable_extension(const std::string& ext) {
 // A DICOM directory's slice files, first series, sorted by position.
 std::vector<std::string> dicom_files(const fs::path& dir) {
   auto names = itk::GDCMSeriesFileNames::New();
-  names->SetUseSeriesDetails(true);
+  names->SetUseSeriesDetails(false);  // group by Series Instance UID alone
   names->SetDirectory(dir.string());
   const auto& series = names->GetSeriesUIDs();
   if (series.empty()) throw_input_error(dir.string(), "", "a DICOM series", "a directory without DICOM images");
@@ -214,7 +222,9 @@ void write_label_map(const fs::path& path, const LabelMap& labels) {
 
 void write_dicom_series(const fs::path& directory, const Volume& volume) {
   register_image_io();
-  using Slice = itk::Image<short, 2>;
+  // Each slice a 3-D image one voxel deep: GDCM writes position, orientation and pixel
+  // spacing from the image geometry (a 2-D slice would carry none of the volume's).
+  using Slice = itk::Image<short, 3>;
   const ImageGeometry& g = volume.geometry;
   const fs::path tmp = directory.parent_path() / (".tmp." + directory.filename().string());
   std::error_code ec;
@@ -224,15 +234,27 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
   try {
     for (int k = 0; k < g.size[2]; ++k) {
       auto slice = Slice::New();
-      Slice::SizeType size{{static_cast<itk::SizeValueType>(g.size[0]), static_cast<itk::SizeValueType>(g.size[1])}};
+      Slice::SizeType size{{static_cast<itk::SizeValueType>(g.size[0]), static_cast<itk::SizeValueType>(g.size[1]), 1}};
       slice->SetRegions(Slice::RegionType(size));
       slice->Allocate();
+      const Vec3 corner = g.physical_point(Vec3(0, 0, k));
+      Slice::PointType origin;
+      Slice::SpacingType spacing_xyz;
+      Slice::DirectionType direction;
+      for (int a = 0; a < 3; ++a) {
+        origin[a] = corner[a];
+        spacing_xyz[a] = g.spacing[a];
+        for (int b = 0; b < 3; ++b) direction(a, b) = g.direction(a, b);
+      }
+      slice->SetOrigin(origin);
+      slice->SetSpacing(spacing_xyz);
+      slice->SetDirection(direction);
       for (int j = 0; j < g.size[1]; ++j)
         for (int i = 0; i < g.size[0]; ++i)
-          slice->SetPixel({{i, j}}, static_cast<short>(std::lround(std::clamp(volume.values[g.linear_index(i, j, k)], -32768.0f, 32767.0f))));
+          slice->SetPixel({{i, j, 0}}, static_cast<short>(std::lround(std::clamp(volume.values[g.linear_index(i, j, k)], -32768.0f, 32767.0f))));
       auto io = itk::GDCMImageIO::New();
       io->KeepOriginalUIDOn();
-      auto& dict = io->GetMetaDataDictionary();
+      auto& dict = slice->GetMetaDataDictionary();  // the writer hands the image's dictionary to GDCM
       const Vec3 position = g.physical_point(Vec3(0, 0, k));
       const Vec3 row = g.direction.col(0), col = g.direction.col(1);
       std::ostringstream pos, orient, spacing;
@@ -247,6 +269,7 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
       itk::EncapsulateMetaData<std::string>(dict, "0008|0018", root + "3." + std::to_string(k + 1));
       itk::EncapsulateMetaData<std::string>(dict, "0020|000d", root + "1");
       itk::EncapsulateMetaData<std::string>(dict, "0020|000e", root + "2");
+      itk::EncapsulateMetaData<std::string>(dict, "0020|0052", root + "4");  // one frame of reference
       itk::EncapsulateMetaData<std::string>(dict, "0020|0013", std::to_string(k + 1));
       itk::EncapsulateMetaData<std::string>(dict, "0020|0032", pos.str());
       itk::EncapsulateMetaData<std::string>(dict, "0020|0037", orient.str());

@@ -1,0 +1,70 @@
+// Atrial-face extraction from a closed thick sheet, and the atrial direction estimate.
+#include <catch2/catch.hpp>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "valve/mesh/quality.hpp"
+#include "valve/remesh/membrane_extraction.hpp"
+
+using namespace valve;
+
+namespace {
+// The closed surface of a w × w × t slab centred at the origin, faces split into n × n
+// squares on the large faces (outward normals), and the rim in n × 1 strips.
+TriMesh slab(double w, double t, int n) {
+  TriMesh m;
+  std::vector<Vec3> pts;
+  auto quad = [&](const Vec3& o, const Vec3& u, const Vec3& v, int nu, int nv) {
+    const int base = static_cast<int>(pts.size());
+    for (int j = 0; j <= nv; ++j)
+      for (int i = 0; i <= nu; ++i) pts.push_back(o + u * (double(i) / nu) + v * (double(j) / nv));
+    for (int j = 0; j < nv; ++j)
+      for (int i = 0; i < nu; ++i) {
+        const int a = base + j * (nu + 1) + i, b = a + 1, c = a + nu + 2, d = a + nu + 1;
+        m.triangles.push_back({a, b, c});
+        m.triangles.push_back({a, c, d});
+      }
+  };
+  const double h = w / 2, z = t / 2;
+  quad(Vec3(-h, -h, z), Vec3(w, 0, 0), Vec3(0, w, 0), n, n);     // top, normal +z
+  quad(Vec3(-h, h, -z), Vec3(w, 0, 0), Vec3(0, -w, 0), n, n);    // bottom, normal -z
+  quad(Vec3(-h, -h, -z), Vec3(w, 0, 0), Vec3(0, 0, t), n, 1);    // y = -h, normal -y
+  quad(Vec3(h, h, -z), Vec3(-w, 0, 0), Vec3(0, 0, t), n, 1);     // y = +h, normal +y
+  quad(Vec3(h, -h, -z), Vec3(0, w, 0), Vec3(0, 0, t), n, 1);     // x = +h, normal +x
+  quad(Vec3(-h, h, -z), Vec3(0, -w, 0), Vec3(0, 0, t), n, 1);    // x = -h, normal -x
+  m.points.resize(static_cast<Eigen::Index>(pts.size()), 3);
+  for (std::size_t i = 0; i < pts.size(); ++i) m.points.row(static_cast<Eigen::Index>(i)) = pts[i].transpose();
+  m.fill_defaults();
+  return m;  // not welded: the extraction only needs each face's own normal and neighbours
+}
+}  // namespace
+
+TEST_CASE("the atrial face of a slab is its top face", "[remesh][membrane]") {
+  const TriMesh s = slab(20, 1, 40);
+  MembraneOptions o;
+  o.atrial_direction = Vec3::UnitZ();
+  MembraneSummary summary;
+  const TriMesh top = extract_atrial_membrane(s, o, &summary);
+  // The top face is one piece of 2 × 40 × 40 triangles at z = t/2 (the rim faces look
+  // sideways and the viewpoint is far above: they are split by the smoothing).
+  CHECK(summary.pieces_kept == 1);
+  CHECK(summary.area_mm2 == Approx(400).epsilon(0.02));
+  for (int i = 0; i < top.num_nodes(); ++i) CHECK(top.points(i, 2) == Approx(0.5).margin(1e-9));
+  o.atrial_direction = -Vec3::UnitZ();
+  const TriMesh bottom = extract_atrial_membrane(s, o, &summary);
+  for (int i = 0; i < bottom.num_nodes(); ++i) CHECK(bottom.points(i, 2) == Approx(-0.5).margin(1e-9));
+}
+
+TEST_CASE("the atrial direction of a funnel points to its wide end", "[remesh][membrane]") {
+  // A funnel along the axis a: radius 15 mm at the top (annulus), 8 mm 10 mm below.
+  const Vec3 axis = Vec3(0.2, -0.3, 1).normalized();
+  const Vec3 u = axis.unitOrthogonal(), v = axis.cross(u);
+  MatX3 pts(36 * 11, 3);
+  int k = 0;
+  for (int j = 0; j <= 10; ++j)
+    for (int i = 0; i < 36; ++i, ++k) {
+      const double a = 2 * 3.14159265358979 * i / 36, r = 15 - 0.7 * j;
+      pts.row(k) = (r * std::cos(a) * u + r * std::sin(a) * v - double(j) * axis).transpose();
+    }
+  CHECK(estimate_atrial_direction(pts).dot(axis) > 0.999);
+}
