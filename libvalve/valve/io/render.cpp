@@ -71,7 +71,9 @@ std::vector<fs::path> render_views(const fs::path& mesh_file, const RenderOption
   }
   auto actor = vtkSmartPointer<vtkActor>::New();
   actor->SetMapper(mapper);
-  actor->GetProperty()->EdgeVisibilityOn();
+  // Edges show the mesh a simulation runs on; on a dense scan surface they would paint it black.
+  if (pd->GetNumberOfCells() <= opt.max_cells_with_edges) actor->GetProperty()->EdgeVisibilityOn();
+  if (opt.array.empty()) actor->GetProperty()->SetColor(0.93, 0.80, 0.70);  // tissue
   actor->GetProperty()->SetEdgeColor(0.2, 0.2, 0.2);
   actor->GetProperty()->SetLineWidth(0.5);
 

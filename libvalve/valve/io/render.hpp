@@ -17,6 +17,7 @@ struct RenderOptions {
   std::vector<std::string> views{"top", "side"};  // top: along −axis, side: along +x
   std::string axis = "z";       // valve axis: x, y or z
   std::string title;            // drawn at the top left; the array name if empty
+  int max_cells_with_edges = 20000;  // denser meshes are drawn without their edges
 };
 
 /// Whether this process can open an X display for rendering.
