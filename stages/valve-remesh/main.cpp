@@ -44,8 +44,8 @@ nlohmann::json shape_json(const MeshShapeReport& r) {
 
 int main(int argc, char** argv) {
   return run_stage("valve-remesh", [&] {
-    const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "thickness", "subdivide", "reference"};
-    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "thickness", "subdivide", "reference"},
+    const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "viewpoint_height", "thickness", "subdivide", "reference"};
+    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference"},
                    {"no-offset", "input-is-membrane", "write-membrane", "quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-remesh: SURFACE: expected one surface mesh, found " + std::to_string(cl.positional().size()) + " arguments");
@@ -58,6 +58,7 @@ int main(int argc, char** argv) {
     ro.method = args.choice("method", ro.method, {"isotropic", "collapse"});
     MembraneOptions mo;
     mo.atrial_direction = args.vector3("atrial-direction");
+    mo.viewpoint_height = args.number("viewpoint-height", mo.viewpoint_height, 0.05, 100);
     if (mo.atrial_direction && mo.atrial_direction->norm() == 0)
       throw InputError("valve-remesh: --atrial-direction: expected a non-zero vector, found 0,0,0");
     const double thickness = args.length_mm("thickness", 1.0, 0, 20);

@@ -11,6 +11,7 @@
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
 #include <vtkPointData.h>
+#include <vtkPointSet.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataWriter.h>
@@ -122,6 +123,35 @@ void add_double_array(vtkDataSetAttributes* attr, const std::string& name, const
 }
 
 }  // namespace
+
+MatX3 read_point_positions(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw_input_error(path.string(), "", "a .vtu or .vtp file", "nothing there");
+  vtkSmartPointer<vtkPointSet> data;
+  const std::string ext = path.extension().string();
+  if (ext == ".vtu") {
+    auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    reader->SetFileName(path.string().c_str());
+    reader->Update();
+    data = reader->GetOutput();
+  } else if (ext == ".vtp") {
+    auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    reader->SetFileName(path.string().c_str());
+    reader->Update();
+    data = reader->GetOutput();
+  } else {
+    throw_input_error(path.string(), "", "a .vtu or .vtp file", "\"" + ext + "\"");
+  }
+  if (!data || !data->GetPoints() || data->GetNumberOfPoints() == 0)
+    throw_input_error(path.string(), "", "points", "none (unreadable or empty)");
+  MatX3 x(data->GetNumberOfPoints(), 3);
+  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
+    double p[3];
+    data->GetPoint(i, p);
+    x.row(i) << p[0], p[1], p[2];
+  }
+  return x;
+}
 
 TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
   const std::string file = path.string();

@@ -30,6 +30,10 @@ TriMesh read_mesh(const std::filesystem::path& path, std::vector<NamedArray>* ex
 void write_mesh(const std::filesystem::path& path, const TriMesh& mesh, const MatX3* positions = nullptr,
                 const std::vector<NamedArray>& extra = {});
 
+/// The point coordinates of any VTK XML data set (.vtu, .vtp), in file order: a frame of a
+/// model whose points follow its node numbering (Texas TriValve: point i = node i + 1).
+MatX3 read_point_positions(const std::filesystem::path& path);
+
 /// Writes a ParaView .pvd collection that lists `files` (relative names) at `times`.
 void write_pvd(const std::filesystem::path& path, const std::vector<std::string>& files,
                const std::vector<double>& times);

@@ -40,7 +40,7 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
 
   const Vec3 lo = surface.points.colwise().minCoeff().transpose(), hi = surface.points.colwise().maxCoeff().transpose();
   const Vec3 centroid = surface.points.colwise().mean().transpose();
-  const Vec3 eye = centroid + 2 * (hi - lo).norm() * s.atrial_direction;
+  const Vec3 eye = centroid + o.viewpoint_height * (hi - lo).norm() * s.atrial_direction;
 
   std::vector<char> atrial(nf, 0);
   for (int f = 0; f < nf; ++f) {

@@ -3,7 +3,7 @@
 // from a scan) to the leaflet membrane the mechanics needs (seed 5.2.2 keeps the atrial
 // surface of the open valve):
 //   1. A face belongs to the atrial side when its outward normal points toward an atrial
-//      viewpoint V = c + 2 D a (c the centroid, D the bounding-box diagonal, a the atrial
+//      viewpoint V = c + h D a (c the centroid, D the bounding-box diagonal, a the atrial
 //      direction): n · (V − x) > 0. For an open funnel-shaped valve and a closed domed one the
 //      atrial face is the one facing up the valve axis; the ventricular face looks away.
 //   2. The labels are smoothed by majority votes over edge neighbours, so that the rim splits
@@ -22,6 +22,7 @@ namespace valve {
 
 struct MembraneOptions {
   std::optional<Vec3> atrial_direction;
+  double viewpoint_height = 2;         // h in V = c + h D a (D the bounding-box diagonal)
   int smoothing_passes = 10;
   int closing_rings = 2;               // face rings of the morphological closing of the selection
   double min_piece_fraction = 0.05;    // of the largest piece's area

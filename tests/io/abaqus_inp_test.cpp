@@ -1,0 +1,49 @@
+// The Abaqus deck reader on a hand-written two-quad model: every number below is read off
+// tests/io/data/two_quads.inp.
+#include <catch2/catch.hpp>
+
+#include "valve/core/error.hpp"
+#include "valve/io/abaqus_inp.hpp"
+
+using namespace valve;
+
+TEST_CASE("an Abaqus deck gives nodes, shells as triangles, trusses and node sets", "[io][abaqus]") {
+  const AbaqusModel m = read_abaqus_inp(VALVE_TEST_DATA_DIR "/two_quads.inp");
+  REQUIRE(m.points.rows() == 7);
+  CHECK(m.points(m.row_of_node.at(10), 2) == -5.0);
+  REQUIRE(m.blocks.size() == 3);
+  CHECK(m.blocks[0].type == "S4R");
+  CHECK(m.node_sets.at("FREE_EDGE_NODES") == std::vector<int>{4, 5, 6});  // GENERATE
+  CHECK(m.node_sets.at("ANNULAR_NODES") == std::vector<int>{1, 2, 3});
+  CHECK(m.node_sets.at("LEAFLET_NODES").size() == 6);
+
+  std::vector<int> rows;
+  const TriMesh mesh = shell_mesh(m, "Annular_Nodes", "Free_Edge_Nodes", &rows);
+  CHECK(mesh.num_nodes() == 6);  // the truss node is not a shell node
+  CHECK(mesh.num_triangles() == 4);
+  CHECK(mesh.leaflet == std::vector<int>{0, 0, 1, 1});
+  double area = 0;
+  for (const Tri& t : mesh.triangles) {
+    area += triangle_area(mesh.points, t);
+    CHECK(triangle_normal(mesh.points, t).z() > 0.99);  // the quads' orientation kept
+  }
+  CHECK(area == Approx(2.0));
+  int fixed = 0, free_edge = 0;
+  for (int i = 0; i < mesh.num_nodes(); ++i) {
+    fixed += mesh.roles[i] == NodeRole::fixed && mesh.boundary[i] == BoundaryType::attached;
+    free_edge += mesh.boundary[i] == BoundaryType::free_edge;
+    CHECK(mesh.points.row(i) == m.points.row(rows[i]));
+  }
+  CHECK(fixed == 3);
+  CHECK(free_edge == 3);
+
+  const auto lines = line_elements(m);
+  REQUIRE(lines.size() == 1);
+  CHECK(m.node_ids[lines[0].first] == 10);
+  CHECK(m.node_ids[lines[0].second] == 1);
+}
+
+TEST_CASE("a broken deck names the file and line", "[io][abaqus]") {
+  CHECK_THROWS_WITH(read_abaqus_inp(VALVE_TEST_DATA_DIR "/no_such.inp"), Catch::Contains("no_such.inp"));
+  CHECK_THROWS_WITH(read_abaqus_inp(VALVE_TEST_DATA_DIR "/bad_node.inp"), Catch::Contains("line 3"));
+}
