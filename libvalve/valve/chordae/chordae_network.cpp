@@ -1,6 +1,11 @@
 #include "valve/chordae/chordae_network.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "valve/config/json_reader.hpp"
+#include "valve/core/error.hpp"
 
 namespace valve {
 
@@ -40,6 +45,66 @@ nlohmann::json to_json(const ChordaeNetwork& network) {
   }
   for (const auto& s : network.segments) segments.push_back({{"from", s.from}, {"to", s.to}, {"type", to_string(s.type)}});
   return {{"diameter_mm", network.diameter}, {"points", points}, {"segments", segments}};
+}
+
+ChordaeNetwork read_chordae_json(const nlohmann::json& doc, const std::string& file) {
+  JsonReader root(doc, file);
+  ChordaeNetwork net;
+  net.diameter = root.number("diameter_mm", 0.5, 1e-3, 10);
+  const json& points = root.raw("points");
+  const json& segments = root.raw("segments");
+  if (!points.is_array() || points.empty()) root.fail("points", "a non-empty list of points", points.dump().substr(0, 40));
+  if (!segments.is_array() || segments.empty()) root.fail("segments", "a non-empty list of segments", segments.dump().substr(0, 40));
+  root.finish();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    JsonReader r(points[i], file, "points[" + std::to_string(i) + "]");
+    ChordPoint p;
+    const std::string kind = r.choice("kind", {"papillary_tip", "branch", "insertion"});
+    p.kind = kind == "papillary_tip" ? ChordPointKind::papillary_tip : kind == "branch" ? ChordPointKind::branch : ChordPointKind::insertion;
+    const auto x = r.number_list("position");
+    if (x.size() != 3 || !std::all_of(x.begin(), x.end(), [](double v) { return std::isfinite(v); }))
+      r.fail("position", "[x, y, z] in mm", std::to_string(x.size()) + " numbers");
+    p.position = Vec3(x[0], x[1], x[2]);
+    p.mesh_node = r.integer("mesh_node", -1, -1);
+    p.name = r.string("name", "");
+    r.finish();
+    net.points.push_back(p);
+  }
+  const int n = static_cast<int>(net.points.size());
+  std::vector<int> parent(n);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  std::vector<int> degree(n, 0);
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const std::string where = "segments[" + std::to_string(i) + "]";
+    JsonReader r(segments[i], file, where);
+    ChordSegment s;
+    s.from = r.integer("from", std::nullopt, 0, n - 1);
+    s.to = r.integer("to", std::nullopt, 0, n - 1);
+    const std::string type = r.choice("type", {"primary", "secondary", "strut"});
+    s.type = type == "primary" ? ChordType::primary : type == "secondary" ? ChordType::secondary : ChordType::strut;
+    r.finish();
+    const double length = (net.points[s.from].position - net.points[s.to].position).norm();
+    if (s.from == s.to || length < 1e-6)
+      throw_input_error(file, where, "a chord of positive length between two points",
+                        "zero length (points " + std::to_string(s.from) + " and " + std::to_string(s.to) + ")");
+    parent[find(s.from)] = find(s.to);
+    ++degree[s.from], ++degree[s.to];
+    net.segments.push_back(s);
+  }
+  std::vector<char> anchored(n, 0);
+  for (int i = 0; i < n; ++i)
+    if (net.points[i].kind == ChordPointKind::papillary_tip) anchored[find(i)] = 1;
+  for (int i = 0; i < n; ++i) {
+    const ChordPoint& p = net.points[i];
+    const std::string where = "points[" + std::to_string(i) + "]" + (p.name.empty() ? "" : " (" + p.name + ")");
+    if (degree[i] == 0) throw_input_error(file, where, "a point used by a segment", "an unconnected point");
+    if (!anchored[find(i)]) throw_input_error(file, where, "a chordae tree connected to a papillary tip", "a tree without one");
+  }
+  return net;
 }
 
 }  // namespace valve

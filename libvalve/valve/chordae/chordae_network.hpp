@@ -45,4 +45,10 @@ const char* to_string(ChordPointKind kind);
 const char* to_string(ChordType type);
 nlohmann::json to_json(const ChordaeNetwork& network);
 
+/// Reads chordae.json (the form above), checking it as a network: every segment joins two
+/// distinct existing points, no chord has zero length, insertions are segment ends, and every
+/// insertion is connected to a papillary tip. Errors name the file and the key
+/// ("points[3].position", "segments[7]"), as InputError.
+ChordaeNetwork read_chordae_json(const nlohmann::json& doc, const std::string& file);
+
 }  // namespace valve

@@ -1,0 +1,63 @@
+// chordae.json: the phantom's network survives a round trip, and the network checks that
+// issue 5 names (zero-length chord, tree without a papillary tip) reject bad files.
+#include <catch2/catch.hpp>
+
+#include "valve/chordae/chordae_network.hpp"
+#include "valve/core/error.hpp"
+#include "valve/imaging/mitral_phantom.hpp"
+
+using namespace valve;
+
+namespace {
+nlohmann::json small_tree() {
+  return nlohmann::json::parse(R"({
+    "diameter_mm": 0.5,
+    "points": [{"kind": "papillary_tip", "position": [0, 0, -20]},
+               {"kind": "branch", "position": [0, 0, -10]},
+               {"kind": "insertion", "position": [1, 0, 0], "mesh_node": 4, "name": "A1"},
+               {"kind": "insertion", "position": [-1, 0, 0], "mesh_node": 7}],
+    "segments": [{"from": 0, "to": 1, "type": "primary"},
+                 {"from": 1, "to": 2, "type": "primary"},
+                 {"from": 1, "to": 3, "type": "secondary"}]})");
+}
+}  // namespace
+
+TEST_CASE("the phantom's chordae survive a JSON round trip", "[chordae]") {
+  const MitralPhantom ph = make_mitral_phantom(MitralPhantomOptions{});
+  const ChordaeNetwork back = read_chordae_json(to_json(ph.chordae), "phantom.chordae.json");
+  REQUIRE(back.points.size() == ph.chordae.points.size());
+  REQUIRE(back.segments.size() == ph.chordae.segments.size());
+  CHECK(back.diameter == ph.chordae.diameter);
+  for (std::size_t i = 0; i < back.points.size(); ++i) {
+    CHECK(back.points[i].kind == ph.chordae.points[i].kind);
+    CHECK(back.points[i].mesh_node == ph.chordae.points[i].mesh_node);
+    CHECK((back.points[i].position - ph.chordae.points[i].position).norm() < 1e-12);
+  }
+  CHECK(back.count(ChordType::strut) == ph.chordae.count(ChordType::strut));
+}
+
+TEST_CASE("chordae.json checks", "[chordae]") {
+  const ChordaeNetwork ok = read_chordae_json(small_tree(), "c.json");
+  CHECK(ok.count(ChordType::secondary) == 1);
+  CHECK(ok.points[2].name == "A1");
+
+  auto doc = small_tree();
+  doc["points"][3]["position"] = {0, 0, -10};  // on top of the branch point
+  CHECK_THROWS_WITH(read_chordae_json(doc, "c.json"), Catch::Contains("segments[2]") && Catch::Contains("zero length"));
+
+  doc = small_tree();
+  doc["points"][0]["kind"] = "branch";  // no papillary tip anywhere
+  CHECK_THROWS_WITH(read_chordae_json(doc, "c.json"), Catch::Contains("papillary tip"));
+
+  doc = small_tree();
+  doc["points"].push_back({{"kind", "insertion"}, {"position", {5, 5, 0}}});
+  CHECK_THROWS_WITH(read_chordae_json(doc, "c.json"), Catch::Contains("points[4]") && Catch::Contains("unconnected"));
+
+  doc = small_tree();
+  doc["segments"][1]["to"] = 9;
+  CHECK_THROWS_WITH(read_chordae_json(doc, "c.json"), Catch::Contains("segments[1].to"));
+
+  doc = small_tree();
+  doc["segments"][0]["type"] = "tertiary";
+  CHECK_THROWS_WITH(read_chordae_json(doc, "c.json"), Catch::Contains("segments[0].type"));
+}
