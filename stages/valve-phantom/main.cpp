@@ -125,11 +125,11 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
 int main(int argc, char** argv) {
   return run_stage("valve-phantom", [&] {
     const std::vector<std::string> keys = {"name", "spacing", "seed", "variation", "thickness", "chord_diameter", "blur",
-                                           "noise", "tissue", "background", "margin", "format", "chordae", "inp", "frame"};
+                                           "noise", "tissue", "background", "margin", "format", "inp", "frame"};
     std::vector<std::string> flags;
     for (std::string k : keys) {
       std::replace(k.begin(), k.end(), '_', '-');
-      if (k != "chordae") flags.push_back(k);
+      flags.push_back(k);
     }
     flags.push_back("out");
     flags.push_back("config");

@@ -131,6 +131,11 @@ int main(int argc, char** argv) {
       levels.push_back(entry);
     }
     m["meshes"] = levels;
+    if (!rs.count_within_tolerance)
+      summary.set_status("not_converged", "no edge length gave a count within " + std::to_string(int(100 * ro.tolerance)) +
+                                              " % of " + std::to_string(ro.target_triangles) + " triangles in " +
+                                              std::to_string(rs.attempts) + " attempts; the closest (" +
+                                              std::to_string(mesh.num_triangles()) + ") is written");
     if (cl.has("write-membrane")) {
       write_mesh(out / "membrane.vtp", membrane);
       m["membrane_file"] = "membrane.vtp";
@@ -144,6 +149,6 @@ int main(int argc, char** argv) {
                   reference.empty() ? "" : (", mean distance to reference " + std::to_string(e["distance_to_reference"]["mean_mm"].get<double>()).substr(0, 5) + " mm").c_str(),
                   (out / e["file"].get<std::string>()).string().c_str());
     }
-    return 0;
+    return rs.count_within_tolerance ? 0 : 3;
   });
 }

@@ -1,5 +1,8 @@
 #include "valve/core/atomic_file.hpp"
 
+#include <algorithm>
+#include <vector>
+
 #include <openssl/evp.h>
 #include <unistd.h>
 
@@ -56,14 +59,30 @@ std::string read_text_file(const fs::path& path) {
 }
 
 std::string sha256_file(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw_input_error(path.string(), "", "a readable file", "none");
+  // A directory (a DICOM series) hashes as its regular files in name order: name, then bytes.
+  std::vector<fs::path> files;
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) {
+    for (const auto& e : fs::directory_iterator(path))
+      if (e.is_regular_file()) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+  } else {
+    files.push_back(path);
+  }
   std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
   EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
   char buf[1 << 16];
-  while (in) {
-    in.read(buf, sizeof buf);
-    if (in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buf, static_cast<size_t>(in.gcount()));
+  for (const fs::path& file : files) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) throw_input_error(file.string(), "", "a readable file", "none");
+    if (files.size() > 1 || file != path) {
+      const std::string name = file.filename().string();
+      EVP_DigestUpdate(ctx.get(), name.data(), name.size());
+    }
+    while (in) {
+      in.read(buf, sizeof buf);
+      if (in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buf, static_cast<size_t>(in.gcount()));
+    }
   }
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int len = 0;

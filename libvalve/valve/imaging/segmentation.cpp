@@ -260,7 +260,7 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
     const std::uint32_t piece_count = n ? *std::max_element(piece, piece + n) : 0;
     std::vector<std::size_t> piece_size(piece_count + 1, 0);
     for (std::size_t v = 0; v < n; ++v) ++piece_size[piece[v]];
-    // A chord is at least a few chord diameters long: 4 π r² · 4 r worth of voxels.
+    // A chord piece is at least 16 opening radii long: π r² · 16 r worth of voxels.
     const double radius = o.chordae_opening_radius;
     const auto chord_min = static_cast<std::size_t>(std::ceil(16 * 3.14159 * radius * radius * radius / voxel_mm3));
     std::vector<char> is_chord(piece_count + 1, 0);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -73,9 +74,12 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
   };
   auto to_double = [&](const std::string& s) {
     try {
-      return std::stod(s);
+      std::size_t used = 0;
+      const double v = std::stod(s, &used);
+      if (used != s.size() || !std::isfinite(v)) fail("finite node coordinates");
+      return v;
     } catch (const std::logic_error&) {
-      fail("node coordinates");
+      fail("finite node coordinates");
     }
     return 0.0;
   };
@@ -122,9 +126,9 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       auto& set = m.node_sets[nset];
       if (generate) {
         if (f.size() < 2) fail("first, last[, step]");
-        const int step = f.size() > 2 ? to_int(f[2]) : 1;
-        if (step <= 0) fail("a positive GENERATE step");
-        for (int id = to_int(f[0]); id <= to_int(f[1]); id += step) set.push_back(id);
+        const long long first = to_int(f[0]), last = to_int(f[1]), step = f.size() > 2 ? to_int(f[2]) : 1;
+        if (step <= 0 || first > last || (last - first) / step > 100000000) fail("first <= last, step > 0, at most 1e8 ids");
+        for (long long id = first; id <= last; id += step) set.push_back(static_cast<int>(id));
       } else {
         for (const auto& s : f) set.push_back(to_int(s));
       }

@@ -17,6 +17,7 @@
 #include <itkSmoothingRecursiveGaussianImageFilter.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -57,8 +58,10 @@ std::string lower_extension(const fs::path& path) {
   return dot == std::string::npos ? "" : name.substr(dot);
 }
 
+// Single-file formats only: a header + data pair (.nhdr, .mhd) would be written under the
+// temporary name and only the header renamed.
 bool is_writable_extension(const std::string& ext) {
-  return ext == ".nrrd" || ext == ".nhdr" || ext == ".mha" || ext == ".mhd" || ext == ".nii" || ext == ".nii.gz";
+  return ext == ".nrrd" || ext == ".mha" || ext == ".nii" || ext == ".nii.gz";
 }
 
 // A DICOM directory's slice files, first series, sorted by position.
@@ -187,7 +190,7 @@ void write_itk(const fs::path& path, Image* image) {
   register_image_io();
   const std::string ext = lower_extension(path);
   if (!is_writable_extension(ext))
-    throw_input_error(path.string(), "", "an image file name ending in .nrrd .nhdr .mha .mhd .nii .nii.gz", "\"" + ext + "\"");
+    throw_input_error(path.string(), "", "an image file name ending in .nrrd .mha .nii .nii.gz", "\"" + ext + "\"");
   // The temporary keeps the extension ITK picks the format by.
   const fs::path tmp = path.parent_path() / (".tmp." + path.filename().string());
   try {
@@ -230,7 +233,9 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
   std::error_code ec;
   fs::remove_all(tmp, ec);
   fs::create_directories(tmp);
-  const std::string root = "1.2.826.0.1.3680043.9.7433.1.";
+  // UIDs unique per written series (two phantoms must not look like one series to a viewer).
+  const auto stamp = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+  const std::string root = "1.2.826.0.1.3680043.9.7433." + std::to_string(stamp) + ".";
   try {
     for (int k = 0; k < g.size[2]; ++k) {
       auto slice = Slice::New();

@@ -129,13 +129,16 @@ MatX3 read_point_positions(const fs::path& path) {
   if (!fs::exists(path, ec)) throw_input_error(path.string(), "", "a .vtu or .vtp file", "nothing there");
   vtkSmartPointer<vtkPointSet> data;
   const std::string ext = path.extension().string();
+  vtkObject::GlobalWarningDisplayOff();  // VTK's multi-line warnings; we report one line
   if (ext == ".vtu") {
     auto reader = vtkSmartPointer<vtkXMLUnstructuredGridReader>::New();
+    if (!reader->CanReadFile(path.string().c_str())) throw_input_error(path.string(), "", "a VTK XML UnstructuredGrid file", "unreadable content");
     reader->SetFileName(path.string().c_str());
     reader->Update();
     data = reader->GetOutput();
   } else if (ext == ".vtp") {
     auto reader = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    if (!reader->CanReadFile(path.string().c_str())) throw_input_error(path.string(), "", "a VTK XML PolyData file", "unreadable content");
     reader->SetFileName(path.string().c_str());
     reader->Update();
     data = reader->GetOutput();
@@ -148,6 +151,8 @@ MatX3 read_point_positions(const fs::path& path) {
   for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
     double p[3];
     data->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw_input_error(path.string(), "point " + std::to_string(i), "finite coordinates", "NaN or infinity");
     x.row(i) << p[0], p[1], p[2];
   }
   return x;

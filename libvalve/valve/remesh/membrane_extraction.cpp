@@ -34,6 +34,8 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
   const int nf = surface.num_triangles();
   s.faces_in = nf;
   if (nf == 0) throw_input_error("membrane extraction", "surface", "a triangulated surface", "no triangles");
+  if (o.atrial_direction && !(o.atrial_direction->norm() > 0))
+    throw_input_error("membrane extraction", "atrial_direction", "a non-zero vector", "zero");
   s.direction_estimated = !o.atrial_direction;
   s.atrial_direction = o.atrial_direction ? o.atrial_direction->normalized() : estimate_atrial_direction(surface.points);
   if (!s.atrial_direction.allFinite()) throw_input_error("membrane extraction", "atrial_direction", "a non-zero vector", "zero");

@@ -43,8 +43,6 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
 Vec3 estimate_atrial_direction(const MatX3& points);
 
 
-/// Area-weighted unit vertex normals (by winding).
-MatX3 vertex_normals(const MatX3& points, const std::vector<Tri>& triangles);
 
 /// Marks boundary loops: the loop lying farthest along `atrial_direction` (mean height) is the
 /// annulus (NodeRole fixed, BoundaryType attached); every other loop is free edge. Sets fibers

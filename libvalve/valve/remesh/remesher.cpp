@@ -330,11 +330,12 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
       const std::size_t found = m.number_of_faces();
       const std::size_t error = found > std::size_t(target) ? found - target : target - found;
       if (error < best_error) best_error = error, best = m, s.target_edge_length = length, repairs = s.border_repairs, flaps = s.flaps_cut;
-      if (error <= o.tolerance * target) break;
+      if (error <= o.tolerance * target || found == 0) break;
       length *= std::sqrt(double(found) / target);
     }
     s.border_repairs = repairs;
     s.flaps_cut = flaps;
+    s.count_within_tolerance = best_error <= o.tolerance * target;
   } else {
     // Collapse to the edge count of the target: 3F = 2E − B, with the border count B
     // shrinking with the edge length.
@@ -351,6 +352,7 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
     s.attempts = 1;
     best = m;
   }
+  if (best.number_of_faces() == 0) throw NumericalError("remesh: no triangles left after remeshing (the membrane is too small or too thin for the target)");
   if (o.mid_surface_offset != 0) {
     auto normals = best.add_property_map<Mesh::Vertex_index, K::Vector_3>("v:normal").first;
     PMP::compute_vertex_normals(best, normals);

@@ -44,6 +44,7 @@ struct RemeshSummary {
   int holes_filled = 0;
   int border_repairs = 0;
   int flaps_cut = 0;  // triangles of narrow-necked flaps removed
+  bool count_within_tolerance = true;  // false: the closest count found is returned
   int input_triangles = 0;
 };
 
