@@ -31,6 +31,19 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return parts;
 }
 
+// A point given as [x, y, z] (JSON) or "x,y,z" (command line).
+bool parse_point(const nlohmann::json& item, Vec3* v) {
+  bool ok = false;
+  if (item.is_array() && item.size() == 3 && item[0].is_number() && item[1].is_number() && item[2].is_number()) {
+    *v = Vec3(item[0].get<double>(), item[1].get<double>(), item[2].get<double>());
+    ok = true;
+  } else if (item.is_string()) {
+    const auto parts = split(item.get<std::string>(), ',');
+    ok = parts.size() == 3 && parse_double(parts[0], &v->x()) && parse_double(parts[1], &v->y()) && parse_double(parts[2], &v->z());
+  }
+  return ok && v->allFinite();
+}
+
 std::string shown(const nlohmann::json& j) { return j.is_string() ? "\"" + j.get<std::string>() + "\"" : j.dump(); }
 
 }  // namespace
@@ -147,15 +160,7 @@ std::optional<Vec3> StageArguments::vector3(const std::string& flag) {
   const auto r = raw(flag);
   if (!r) return std::nullopt;
   Vec3 v;
-  bool ok = false;
-  if (r->is_array() && r->size() == 3 && (*r)[0].is_number() && (*r)[1].is_number() && (*r)[2].is_number()) {
-    v = Vec3((*r)[0].get<double>(), (*r)[1].get<double>(), (*r)[2].get<double>());
-    ok = true;
-  } else if (r->is_string()) {
-    const auto parts = split(r->get<std::string>(), ',');
-    ok = parts.size() == 3 && parse_double(parts[0], &v.x()) && parse_double(parts[1], &v.y()) && parse_double(parts[2], &v.z());
-  }
-  if (!ok || !v.allFinite()) throw InputError(where(flag) + ": expected three numbers x,y,z, found " + shown(*r));
+  if (!parse_point(*r, &v)) throw InputError(where(flag) + ": expected three numbers x,y,z, found " + shown(*r));
   used_[key_of(flag)] = {v.x(), v.y(), v.z()};
   return v;
 }
@@ -172,15 +177,7 @@ std::vector<Vec3> StageArguments::points(const std::string& flag) {
   nlohmann::json record = nlohmann::json::array();
   for (const auto& item : items) {
     Vec3 v;
-    bool ok = false;
-    if (item.is_array() && item.size() == 3 && item[0].is_number() && item[1].is_number() && item[2].is_number()) {
-      v = Vec3(item[0].get<double>(), item[1].get<double>(), item[2].get<double>());
-      ok = true;
-    } else if (item.is_string()) {
-      const auto parts = split(item.get<std::string>(), ',');
-      ok = parts.size() == 3 && parse_double(parts[0], &v.x()) && parse_double(parts[1], &v.y()) && parse_double(parts[2], &v.z());
-    }
-    if (!ok || !v.allFinite()) throw InputError(where(flag) + ": expected points x,y,z, found " + shown(item));
+    if (!parse_point(item, &v)) throw InputError(where(flag) + ": expected points x,y,z, found " + shown(item));
     out.push_back(v);
     record.push_back({v.x(), v.y(), v.z()});
   }

@@ -43,6 +43,17 @@ bool ball_of(double radius_mm, const ImageGeometry& g, Ball* ball) {
   return true;
 }
 
+// A binary closing or opening of the foreground (value 1) with the ball.
+template <template <class, class, class> class Filter>
+MaskImage::Pointer morphology(MaskImage::Pointer mask, const Ball& ball) {
+  auto filter = Filter<MaskImage, MaskImage, Ball>::New();
+  filter->SetInput(mask);
+  filter->SetKernel(ball);
+  filter->SetForegroundValue(1);
+  filter->Update();
+  return filter->GetOutput();
+}
+
 FloatImage::Pointer crop(FloatImage::Pointer image, const SegmentationOptions& o, const ImageGeometry& g) {
   if (!o.crop) return image;
   Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
@@ -188,26 +199,13 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
   }
 
   Ball ball;
-  if (o.closing_radius > 0 && ball_of(o.closing_radius, g, &ball)) {
-    auto close = itk::BinaryMorphologicalClosingImageFilter<MaskImage, MaskImage, Ball>::New();
-    close->SetInput(tissue);
-    close->SetKernel(ball);
-    close->SetForegroundValue(1);
-    close->Update();
-    tissue = close->GetOutput();
-  }
+  if (o.closing_radius > 0 && ball_of(o.closing_radius, g, &ball))
+    tissue = morphology<itk::BinaryMorphologicalClosingImageFilter>(tissue, ball);
   s.voxels_tissue = count(tissue);
 
   MaskImage::Pointer core = tissue;
   s.chordae_separated = o.chordae_opening_radius > 0 && ball_of(o.chordae_opening_radius, g, &ball);
-  if (s.chordae_separated) {
-    auto open = itk::BinaryMorphologicalOpeningImageFilter<MaskImage, MaskImage, Ball>::New();
-    open->SetInput(tissue);
-    open->SetKernel(ball);
-    open->SetForegroundValue(1);
-    open->Update();
-    core = open->GetOutput();
-  }
+  if (s.chordae_separated) core = morphology<itk::BinaryMorphologicalOpeningImageFilter>(tissue, ball);
   const double voxel_mm3 = g.spacing.prod();
   const auto min_voxels = static_cast<std::size_t>(std::ceil(o.min_component_mm3 / voxel_mm3));
   LabelImage::Pointer parts = components(core, std::max<std::size_t>(min_voxels, 1), false);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <map>
 
+#include "valve/mesh/topology.hpp"
+
 namespace valve {
 
 TriMesh subdivide_midpoint(const TriMesh& mesh) {
@@ -23,10 +25,6 @@ TriMesh subdivide_midpoint(const TriMesh& mesh) {
     midpoint.emplace(key, id);
     return id;
   };
-  // A midpoint between two boundary nodes is only on the boundary if the edge is.
-  std::map<std::pair<int, int>, int> edge_uses;
-  for (const Tri& t : mesh.triangles)
-    for (int k = 0; k < 3; ++k) ++edge_uses[std::minmax(t[k], t[(k + 1) % 3])];
   for (int f = 0; f < mesh.num_triangles(); ++f) {
     const Tri& t = mesh.triangles[f];
     const int ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
@@ -35,8 +33,10 @@ TriMesh subdivide_midpoint(const TriMesh& mesh) {
       out.leaflet.push_back(mesh.leaflet.empty() ? 0 : mesh.leaflet[f]);
     }
   }
-  for (const auto& [key, id] : midpoint)
-    if (edge_uses[key] > 1) {
+  // A midpoint between two boundary nodes is only on the boundary if the edge is.
+  for (const Edge& e : build_topology(mesh.triangles, n).edges)
+    if (e.tris[1] >= 0) {
+      const int id = midpoint.at({e.a, e.b});
       boundary[id] = BoundaryType::interior;
       roles[id] = NodeRole::free;
     }

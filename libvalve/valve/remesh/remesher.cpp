@@ -27,6 +27,7 @@
 #include <set>
 
 #include "valve/core/error.hpp"
+#include "valve/mesh/quality.hpp"
 
 namespace valve {
 namespace {
@@ -117,10 +118,10 @@ void smooth_borders(Mesh& m, int iterations) {
   }
 }
 
-// q = 4√3 a / (s1² + s2² + s3²), as in mesh/quality.hpp.
+// The quality of mesh/quality.hpp on CGAL points.
 double triangle_quality(const Point& a, const Point& b, const Point& c) {
-  const double sum = CGAL::squared_distance(a, b) + CGAL::squared_distance(b, c) + CGAL::squared_distance(c, a);
-  return sum > 0 ? 4 * std::sqrt(3.0) * std::sqrt(CGAL::squared_area(a, b, c)) / sum : 0;
+  auto v = [](const Point& p) { return Vec3(p.x(), p.y(), p.z()); };
+  return valve::triangle_quality(v(a), v(b), v(c));
 }
 
 double face_quality(const Mesh& m, Mesh::Face_index f) {
