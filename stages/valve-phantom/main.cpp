@@ -45,13 +45,13 @@ struct PhantomGeometry {
   nlohmann::json description;  // for the summary
 };
 
-PhantomGeometry mitral_geometry(StageArguments& args, bool chordae, std::optional<ChordaeNetwork>* network) {
+PhantomGeometry mitral_geometry(StageArguments& args, double spacing, std::uint64_t seed, bool chordae,
+                                std::optional<ChordaeNetwork>* network) {
   MitralPhantomOptions o;
-  o.seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 52));
+  o.seed = seed;
   o.variation = args.number("variation", o.variation, 0, 0.45);
   o.thickness = args.length_mm("thickness", o.thickness, 0.05, 10);
   o.chord_diameter = args.length_mm("chord-diameter", o.chord_diameter, 0.05, 5);
-  const double spacing = args.length_mm("spacing", 0.2, 0.02, 5);
   o.edge_length = std::min(0.4, 2 * spacing);
   const MitralPhantom ph = make_mitral_phantom(o);
   PhantomGeometry g;
@@ -142,6 +142,7 @@ int main(int argc, char** argv) {
     const fs::path out = cl.require("out");
     const std::string name = args.text("name", "open");
     const double spacing = args.length_mm("spacing", 0.2, 0.02, 5);
+    const auto seed = static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 52));  // variation (mitral) and noise
     const double blur = args.length_mm("blur", 0.1, 0, 5);
     const double noise = args.number("noise", 40, 0, 1e6);
     const double tissue = args.number("tissue", 1000, -1e4, 3e4), background = args.number("background", 0, -1e4, 3e4);
@@ -152,7 +153,7 @@ int main(int argc, char** argv) {
     Progress progress("valve-phantom", cl.has("quiet"));
 
     std::optional<ChordaeNetwork> network;
-    const PhantomGeometry ph = kind == "mitral" ? mitral_geometry(args, chordae, &network) : model_geometry(args, chordae);
+    const PhantomGeometry ph = kind == "mitral" ? mitral_geometry(args, spacing, seed, chordae, &network) : model_geometry(args, chordae);
     Vec3 lo = ph.leaflets.points.colwise().minCoeff().transpose(), hi = ph.leaflets.points.colwise().maxCoeff().transpose();
     for (const auto& [a, b] : ph.chord_segments) lo = lo.cwiseMin(a).cwiseMin(b), hi = hi.cwiseMax(a).cwiseMax(b);
     for (const auto& pm : ph.papillary) {
@@ -172,7 +173,7 @@ int main(int argc, char** argv) {
     progress.update(0.8, "chordae voxelized");
     Volume volume = vox.to_volume(static_cast<float>(background), static_cast<float>(tissue));
     gaussian_blur(volume, blur);
-    add_gaussian_noise(volume, noise, static_cast<std::uint64_t>(args.integer("seed", 1, 0, 1LL << 52)));
+    add_gaussian_noise(volume, noise, seed);
 
     fs::create_directories(out);
     std::string image_file = name + (format == "nrrd" ? ".nrrd" : format == "mha" ? ".mha" : format == "nii" ? ".nii.gz" : "");
