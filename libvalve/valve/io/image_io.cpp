@@ -260,15 +260,6 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
       auto io = itk::GDCMImageIO::New();
       io->KeepOriginalUIDOn();
       auto& dict = slice->GetMetaDataDictionary();  // the writer hands the image's dictionary to GDCM
-      const Vec3 position = g.physical_point(Vec3(0, 0, k));
-      const Vec3 row = g.direction.col(0), col = g.direction.col(1);
-      std::ostringstream pos, orient, spacing;
-      pos.precision(10);
-      orient.precision(10);
-      spacing.precision(10);
-      pos << position.x() << "\\" << position.y() << "\\" << position.z();
-      orient << row.x() << "\\" << row.y() << "\\" << row.z() << "\\" << col.x() << "\\" << col.y() << "\\" << col.z();
-      spacing << g.spacing.y() << "\\" << g.spacing.x();
       itk::EncapsulateMetaData<std::string>(dict, "0008|0060", "CT");
       itk::EncapsulateMetaData<std::string>(dict, "0008|0016", "1.2.840.10008.5.1.4.1.1.2");
       itk::EncapsulateMetaData<std::string>(dict, "0008|0018", root + "3." + std::to_string(k + 1));
@@ -276,9 +267,6 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
       itk::EncapsulateMetaData<std::string>(dict, "0020|000e", root + "2");
       itk::EncapsulateMetaData<std::string>(dict, "0020|0052", root + "4");  // one frame of reference
       itk::EncapsulateMetaData<std::string>(dict, "0020|0013", std::to_string(k + 1));
-      itk::EncapsulateMetaData<std::string>(dict, "0020|0032", pos.str());
-      itk::EncapsulateMetaData<std::string>(dict, "0020|0037", orient.str());
-      itk::EncapsulateMetaData<std::string>(dict, "0028|0030", spacing.str());
       itk::EncapsulateMetaData<std::string>(dict, "0018|0050", std::to_string(g.spacing.z()));
       auto writer = itk::ImageFileWriter<Slice>::New();
       char name[32];
