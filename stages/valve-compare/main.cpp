@@ -1,13 +1,23 @@
-// valve-compare SIMULATED.vtp REFERENCE.vtp --out DIR [--correspondence nodes] [--quiet]
-// Distances from each node of SIMULATED to REFERENCE: with --correspondence nodes (the
-// default, for meshes with the same node numbering: two models on one mesh, the Texas
-// TriValve frames) the distance to the node with the same index. Writes DIR/error.vtp
-// (SIMULATED with the point array Error_mm) and DIR/compare.summary.json (mean, max, RMS,
-// 95th percentile).
+// valve-compare SIMULATED.vtp REFERENCE.vtp --out DIR [--correspondence nodes|nearest]
+//               [--register none|annulus|all] [--quiet]
+// How far a simulated valve is from a reference (a closed-valve scan's membrane, or a mesh
+// with the same numbering).
+//   --correspondence nodes (default when both meshes have the same node count and no
+//     registration is asked): the distance from node i to reference node i.
+//   --correspondence nearest (default otherwise): from each simulated node to the nearest
+//     reference node (the seed's metric, 5.2.2) and to the nearest point of the reference
+//     surface (Error_mm).
+//   --register annulus (default for nearest): rigid ICP of the simulated annulus ring onto
+//     the reference's (seed); all: ICP of all nodes; none: as they are.
+// Writes DIR/error.vtp (SIMULATED, registered, with Error_mm and for nearest NodeError_mm)
+// and DIR/compare.summary.json (mean, max, RMS, 95th percentile; registration).
 #include <cstdio>
 #include <filesystem>
 
+#include "valve/analysis/annulus_targets.hpp"
 #include "valve/analysis/distance_stats.hpp"
+#include "valve/analysis/rigid_registration.hpp"
+#include "valve/analysis/surface_distance.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/io/mesh_io.hpp"
@@ -15,31 +25,105 @@
 using namespace valve;
 namespace fs = std::filesystem;
 
+namespace {
+
+MatX3 rows(const MatX3& p, const std::vector<int>& idx) {
+  MatX3 out(static_cast<int>(idx.size()), 3);
+  for (std::size_t k = 0; k < idx.size(); ++k) out.row(k) = p.row(idx[k]);
+  return out;
+}
+
+Eigen::MatrixXd column(const std::vector<double>& d) {
+  Eigen::MatrixXd c(d.size(), 1);
+  for (std::size_t i = 0; i < d.size(); ++i) c(i, 0) = d[i];
+  return c;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   return run_stage("valve-compare", [&] {
-    CommandLine cl(argc, argv, {"out", "correspondence"}, {"quiet"});
+    CommandLine cl(argc, argv, {"out", "correspondence", "register"}, {"quiet"});
     if (cl.positional().size() != 2)
       throw InputError("valve-compare: expected SIMULATED.vtp REFERENCE.vtp, found " + std::to_string(cl.positional().size()) +
                        " file arguments");
     const fs::path sim_file = cl.positional()[0], ref_file = cl.positional()[1];
     const fs::path out = cl.require("out");
-    const std::string mode = cl.get("correspondence").value_or("nodes");
-    if (mode != "nodes") throw InputError("valve-compare: --correspondence: expected nodes, found \"" + mode + "\"");
     const TriMesh sim = read_mesh(sim_file), ref = read_mesh(ref_file);
-    const auto d = corresponding_node_distances(sim.points, ref.points);
-    const DistanceStats st = summarize_distances(d);
+    const bool same_numbering = sim.num_nodes() == ref.num_nodes();
+    const std::string mode =
+        cl.get("correspondence").value_or(same_numbering && !cl.get("register") ? "nodes" : "nearest");
+    if (mode != "nodes" && mode != "nearest")
+      throw InputError("valve-compare: --correspondence: expected nodes or nearest, found \"" + mode + "\"");
+    const std::string reg = cl.get("register").value_or(mode == "nearest" ? "annulus" : "none");
+    if (reg != "none" && reg != "annulus" && reg != "all")
+      throw InputError("valve-compare: --register: expected none, annulus or all, found \"" + reg + "\"");
+    if (mode == "nodes" && !same_numbering)
+      throw_input_error(ref_file.string(), "points", std::to_string(sim.num_nodes()) + " nodes (--correspondence nodes)",
+                        std::to_string(ref.num_nodes()));
+
+    IcpResult icp;
+    MatX3 moved = sim.points;
+    if (reg != "none") {
+      MatX3 source = sim.points, target = ref.points;
+      if (reg == "annulus") {
+        const std::vector<int> a = annulus_ring(sim), b = annulus_ring(ref);
+        if (a.size() < 3)
+          throw_input_error(sim_file.string(), "NodeRole", "an annulus (boundary loop with fixed or attached nodes) to register",
+                            std::to_string(a.size()) + " such nodes");
+        if (b.size() < 3)
+          throw_input_error(ref_file.string(), "NodeRole", "an annulus (boundary loop with fixed or attached nodes) to register",
+                            std::to_string(b.size()) + " such nodes");
+        source = resample_ring(rows(sim.points, a), 360);
+        target = resample_ring(rows(ref.points, b), 1440);
+      }
+      icp = icp_point_to_point(source, target);
+      moved = icp.transform.apply(sim.points);
+    }
+
     StageSummary summary("compare", out);
     summary.add_input("simulated", sim_file);
     summary.add_input("reference", ref_file);
-    summary.parameters() = {{"correspondence", mode}};
-    summary.metrics()["node_distance"] = st.to_json();
-    Eigen::MatrixXd err(d.size(), 1);
-    for (size_t i = 0; i < d.size(); ++i) err(i, 0) = d[i];
-    write_mesh(out / "error.vtp", sim, nullptr, {{"Error_mm", err, false}});
+    summary.parameters() = {{"correspondence", mode}, {"register", reg}};
+    if (reg != "none")
+      summary.metrics()["registration"] = {{"rms_mm", icp.rms},
+                                           {"iterations", icp.iterations},
+                                           {"converged", icp.converged},
+                                           {"rotation_deg", icp.transform.rotation_angle_deg()},
+                                           {"translation_mm", icp.transform.translation.norm()}};
+    std::vector<NamedArray> arrays;
+    DistanceStats headline;
+    if (mode == "nodes") {
+      const auto d = corresponding_node_distances(moved, ref.points);
+      headline = summarize_distances(d);
+      summary.metrics()["node_distance"] = headline.to_json();
+      arrays.push_back({"Error_mm", column(d), false});
+    } else {
+      std::vector<double> node_d(moved.rows());
+      for (int i = 0; i < moved.rows(); ++i) {
+        double best = 1e300;
+        for (int j = 0; j < ref.num_nodes(); ++j) best = std::min(best, (ref.points.row(j) - moved.row(i)).squaredNorm());
+        node_d[i] = std::sqrt(best);
+      }
+      const std::vector<double> surf_d = distances_to_surface(moved, ref);
+      headline = summarize_distances(surf_d);
+      summary.metrics()["surface_distance"] = headline.to_json();
+      summary.metrics()["nearest_node_distance"] = summarize_distances(node_d).to_json();
+      arrays.push_back({"Error_mm", column(surf_d), false});
+      arrays.push_back({"NodeError_mm", column(node_d), false});
+    }
+    write_mesh(out / "error.vtp", sim, &moved, arrays);
     summary.write();
-    if (!cl.has("quiet"))
-      std::printf("valve-compare: %d nodes, mean %.3f mm, max %.3f mm, rms %.3f mm, p95 %.3f mm\n", st.count, st.mean,
-                  st.max, st.rms, st.p95);
+    if (!cl.has("quiet")) {
+      std::printf("valve-compare: %d nodes, %s distance: mean %.3f mm, max %.3f mm, rms %.3f mm, p95 %.3f mm\n", headline.count,
+                  mode == "nodes" ? "node-to-node" : "surface", headline.mean, headline.max, headline.rms, headline.p95);
+      if (mode == "nearest") {
+        const DistanceStats nd = summarize_distances(std::vector<double>(arrays[1].values.data(), arrays[1].values.data() + arrays[1].values.size()));
+        std::printf("  nearest node (seed metric): mean %.3f mm, max %.3f mm\n", nd.mean, nd.max);
+      }
+      if (reg != "none") std::printf("  registration (%s): rms %.3f mm, rotation %.2f deg, translation %.3f mm\n", reg.c_str(), icp.rms,
+                                     icp.transform.rotation_angle_deg(), icp.transform.translation.norm());
+    }
     return 0;
   });
 }

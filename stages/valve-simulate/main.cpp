@@ -14,7 +14,9 @@
 #include <set>
 
 #include "valve/analysis/coaptation.hpp"
+#include "valve/io/chordae_io.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
+#include "valve/mechanics/chordae_rods.hpp"
 #include "valve/mechanics/contact.hpp"
 #include "valve/config/scene_config.hpp"
 #include "valve/core/cli.hpp"
@@ -52,13 +54,18 @@ int main(int argc, char** argv) {
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
     const bool quiet = cl.has("quiet");
 
-    TriMesh mesh = read_mesh(scene.mesh_path);
+    const TriMesh mesh = read_mesh(scene.mesh_path);
     validate_mesh(mesh, scene.mesh_path.string());
-    auto system = build_system(scene, mesh);
+    std::optional<TriMesh> closed;
+    if (scene.annulus_motion) closed = read_mesh(scene.annulus_motion->closed_mesh);
+    const SceneModel model = prepare_scene_model(scene, mesh, closed ? &*closed : nullptr);
+    auto system = build_system(scene, model);
 
     StageSummary summary("simulate", out);
     summary.add_input("scene", scene_file);
     summary.add_input("mesh", scene.mesh_path);
+    if (scene.chordae) summary.add_input("chordae", scene.chordae->file);
+    if (scene.annulus_motion) summary.add_input("closed_mesh", scene.annulus_motion->closed_mesh);
     summary.parameters() = scene.used;
 
     Progress progress("valve-simulate", quiet);
@@ -71,7 +78,7 @@ int main(int argc, char** argv) {
       progress.update(-1, "t = " + std::to_string(t) + " ms, " + std::to_string(accepted) + " steps");
       if (scene.time_series && accepted % scene.time_series_every == 0) {
         const std::string name = "series/step_" + std::to_string(accepted) + ".vtp";
-        const MatX3 pos = unflatten(x);
+        const MatX3 pos = unflatten(model.leaflet_state(x));
         write_mesh(out / name, mesh, &pos);
         series_files.push_back(name);
         series_times.push_back(t);
@@ -82,7 +89,9 @@ int main(int argc, char** argv) {
       biaxial = std::make_unique<BiaxialProtocol>(scene, mesh);
       biaxial->install(hooks);
     }
-    const SimulationResult res = simulate(scene, mesh, *system, hooks);
+    SimulationResult res = simulate(scene, model.mesh, *system, hooks);
+    const VecX full_state = res.x;
+    res.x = model.leaflet_state(full_state);
     progress.finish(res.summary.one_line());
 
     summary.metrics()["solver"] = res.summary.to_json();
@@ -103,6 +112,33 @@ int main(int argc, char** argv) {
                                           {"loaded_diameter_mm", res.root->loaded_diameter},
                                           {"newton_iterations", res.root->summary.newton_iterations},
                                           {"wall_seconds", res.root->summary.wall_seconds}};
+    if (model.annulus) {
+      const AnnulusTargets& a = *model.annulus;
+      summary.metrics()["annulus_motion"] = {{"nodes", a.nodes.size()},
+                                             {"mean_motion_mm", a.mean_motion_mm},
+                                             {"max_motion_mm", a.max_motion_mm},
+                                             {"open_length_mm", a.open_length_mm},
+                                             {"closed_length_mm", a.closed_length_mm},
+                                             {"ring_registration_rms_mm", a.ring_rms_mm},
+                                             {"ring_registration_rotation_deg", a.registration.rotation_angle_deg()}};
+    }
+    for (const auto& term : system->terms())
+      if (const auto* c = dynamic_cast<const ChordaeTerm*>(term.get())) {
+        const std::vector<double> tension = c->tensions(full_state);
+        const ChordaeNetwork& net = *model.chordae;
+        int taut = 0;
+        double max_tension = 0;
+        for (double t : tension) taut += t > 0, max_tension = std::max(max_tension, t);
+        summary.metrics()["chordae"] = {{"segments", net.segments.size()},
+                                        {"primary", net.count(ChordType::primary)},
+                                        {"secondary", net.count(ChordType::secondary)},
+                                        {"strut", net.count(ChordType::strut)},
+                                        {"taut", taut},
+                                        {"max_tension_N", max_tension}};
+        MatX3 at(static_cast<int>(net.points.size()), 3);
+        for (std::size_t p = 0; p < net.points.size(); ++p) at.row(p) = node3(full_state, model.attachment.point_node[p]).transpose();
+        if (full_state.allFinite()) write_chordae_vtp(out / "closed.chordae.vtp", net, &at, &tension);
+      }
     for (const auto& term : system->terms())
       if (const auto* c = dynamic_cast<const ContactForceTerm*>(term.get())) {
         const ContactStatistics& st = c->statistics();

@@ -17,6 +17,12 @@ int ChordaeNetwork::count(ChordPointKind kind) const {
   return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const ChordPoint& p) { return p.kind == kind; }));
 }
 
+double ChordaeNetwork::rest_length(int s) const {
+  const ChordSegment& seg = segments[s];
+  if (seg.rest_length > 0) return seg.rest_length;
+  return seg.scale * (points[seg.from].position - points[seg.to].position).norm();
+}
+
 const char* to_string(ChordPointKind kind) {
   switch (kind) {
     case ChordPointKind::papillary_tip: return "papillary_tip";
@@ -43,7 +49,12 @@ nlohmann::json to_json(const ChordaeNetwork& network) {
     if (!p.name.empty()) j["name"] = p.name;
     points.push_back(j);
   }
-  for (const auto& s : network.segments) segments.push_back({{"from", s.from}, {"to", s.to}, {"type", to_string(s.type)}});
+  for (const auto& s : network.segments) {
+    nlohmann::json j = {{"from", s.from}, {"to", s.to}, {"type", to_string(s.type)}};
+    if (s.scale != 1.0) j["scale"] = s.scale;
+    if (s.rest_length > 0) j["rest_length_mm"] = s.rest_length;
+    segments.push_back(j);
+  }
   return {{"diameter_mm", network.diameter}, {"points", points}, {"segments", segments}};
 }
 
@@ -86,6 +97,8 @@ ChordaeNetwork read_chordae_json(const nlohmann::json& doc, const std::string& f
     s.to = r.integer("to", std::nullopt, 0, n - 1);
     const std::string type = r.choice("type", {"primary", "secondary", "strut"});
     s.type = type == "primary" ? ChordType::primary : type == "secondary" ? ChordType::secondary : ChordType::strut;
+    s.scale = r.number("scale", 1.0, 0.2, 5.0);
+    s.rest_length = r.number("rest_length_mm", 0.0, 0.0, 1000.0);
     r.finish();
     const double length = (net.points[s.from].position - net.points[s.to].position).norm();
     if (s.from == s.to || length < 1e-6)

@@ -8,7 +8,9 @@
 //   {"diameter_mm": 0.5,
 //    "points": [{"kind": "papillary_tip"|"branch"|"insertion", "position": [x, y, z],
 //                "mesh_node": i (insertions; -1 if not snapped yet), "name": "..."}, ...],
-//    "segments": [{"from": i, "to": j, "type": "primary"|"secondary"|"strut"}, ...]}
+//    "segments": [{"from": i, "to": j, "type": "primary"|"secondary"|"strut",
+//                  "scale": 1.0 (rest length factor, < 1 shortens a chord as a repair does),
+//                  "rest_length_mm": L0 (optional; default: the open-geometry length × scale)}, ...]}
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -30,6 +32,8 @@ struct ChordPoint {
 struct ChordSegment {
   int from = 0, to = 0;
   ChordType type = ChordType::primary;
+  double scale = 1.0;        // rest length factor (chord shortening)
+  double rest_length = 0.0;  // mm; 0 = not set (the open-geometry length × scale)
 };
 
 struct ChordaeNetwork {
@@ -39,6 +43,8 @@ struct ChordaeNetwork {
 
   int count(ChordType type) const;
   int count(ChordPointKind kind) const;
+  /// Rest length of segment s: its explicit rest_length, else |from − to| × scale.
+  double rest_length(int s) const;
 };
 
 const char* to_string(ChordPointKind kind);

@@ -167,6 +167,24 @@ std::vector<double> JsonReader::number_list(const std::string& key,
   return out;
 }
 
+std::vector<std::string> JsonReader::string_list(const std::string& key,
+                                                  std::optional<std::vector<std::string>> fallback) {
+  const json* v = find(key);
+  std::vector<std::string> out;
+  if (!v) {
+    if (!fallback) fail(key, "a list of strings", "nothing (the key is required)");
+    out = *fallback;
+  } else {
+    if (!v->is_array()) fail(key, "a list of strings", describe_json(*v));
+    for (const auto& e : *v) {
+      if (!e.is_string()) fail(key, "a list of strings", describe_json(*v));
+      out.push_back(e.get<std::string>());
+    }
+  }
+  used_[key] = out;
+  return out;
+}
+
 std::vector<int> JsonReader::integer_list(const std::string& key,
                                           std::optional<std::vector<int>> fallback) {
   const json* v = find(key);

@@ -44,6 +44,8 @@ class JsonReader {
                                   std::optional<std::vector<double>> fallback = std::nullopt);
   std::vector<int> integer_list(const std::string& key,
                                 std::optional<std::vector<int>> fallback = std::nullopt);
+  std::vector<std::string> string_list(const std::string& key,
+                                       std::optional<std::vector<std::string>> fallback = std::nullopt);
   /// A sub-object (empty if absent). Record its values with record(key, child.finish()).
   JsonReader object(const std::string& key);
   /// The raw value (marked as read) for callers that parse it themselves.

@@ -170,6 +170,39 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     r.record("aortic_root", a.finish());
     sc.aortic_root = ac;
   }
+  if (r.has("chordae")) {
+    JsonReader c = r.object("chordae");
+    ChordaeConfig cc;
+    const std::string f = c.string("file");
+    cc.file = fs::path(f).is_absolute() ? fs::path(f) : base_dir / f;
+    cc.youngs_modulus = c.quantity("youngs_modulus", Dimension::pressure, std::string("40 MPa"), 1e-6, 1e6);
+    cc.diameter = c.quantity("diameter", Dimension::length, std::string("0 mm"), 0.0, 10);
+    cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, std::string("1 mm"), 0.0, 100);
+    cc.rest_length_scale = c.number("rest_length_scale", 1.0, 0.2, 5.0);
+    cc.types = c.string_list("types", std::vector<std::string>{"primary", "secondary", "strut"});
+    for (const auto& t : cc.types)
+      if (t != "primary" && t != "secondary" && t != "strut") c.fail("types", "a list of primary, secondary, strut", t);
+    if (c.has("papillary_tips")) {
+      const json& tips = c.raw("papillary_tips");
+      bool ok = tips.is_array();
+      if (ok)
+        for (const auto& t : tips) ok = ok && t.is_array() && t.size() == 3 && t[0].is_number() && t[1].is_number() && t[2].is_number();
+      if (!ok) c.fail("papillary_tips", "a list of [x, y, z] in mm", describe_json(tips));
+      for (const auto& t : tips) cc.papillary_tips.emplace_back(t[0].get<double>(), t[1].get<double>(), t[2].get<double>());
+      c.record("papillary_tips", tips);
+    }
+    r.record("chordae", c.finish());
+    sc.chordae = cc;
+  }
+  if (r.has("annulus_motion")) {
+    JsonReader a = r.object("annulus_motion");
+    AnnulusMotionConfig ac;
+    const std::string f = a.string("closed_mesh");
+    ac.closed_mesh = fs::path(f).is_absolute() ? fs::path(f) : base_dir / f;
+    ac.register_rigidly = a.boolean("register", true);
+    r.record("annulus_motion", a.finish());
+    sc.annulus_motion = ac;
+  }
   if (r.has("leaflet_materials")) {
     const json& list = r.raw("leaflet_materials");
     if (!list.is_array()) r.fail("leaflet_materials", "a list of {leaflets, material, thickness}", describe_json(list));

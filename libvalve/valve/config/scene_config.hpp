@@ -68,6 +68,25 @@ struct AorticRootConfig {
   double pressure = 0;                    // MPa distending the root (default: the scene pressure)
   std::string preset, source;
 };
+/// Chordae tendineae (seed 5.2.2): a chordae.json whose insertions are snapped to the
+/// scene's mesh, as tension-only rods; papillary tips fixed (optionally moved to the
+/// closed-state positions given in network order).
+struct ChordaeConfig {
+  std::filesystem::path file;
+  double youngs_modulus = 40.0;  // MPa (Table 5.1)
+  double diameter = 0;           // mm; 0 = the file's diameter_mm
+  double snap_tolerance = 1.0;   // mm, for insertions not yet snapped to this mesh
+  double rest_length_scale = 1.0;  // every chord's rest length × this (sensitivity, repairs)
+  std::vector<std::string> types{"primary", "secondary", "strut"};  // chord types kept
+  std::vector<Vec3> papillary_tips;  // closed-state tip positions (empty: as in the file)
+};
+/// Annulus motion (seed 5.2.2): the annulus nodes move from the open to the closed
+/// positions before the pressure is applied. Targets come from the outer boundary loop of
+/// the closed-state membrane mesh, registered rigidly to the open annulus.
+struct AnnulusMotionConfig {
+  std::filesystem::path closed_mesh;
+  bool register_rigidly = true;
+};
 /// A material (and thickness) for some leaflets, overriding the scene's.
 struct LeafletMaterialConfig {
   std::vector<int> leaflets;
@@ -89,6 +108,8 @@ struct SceneConfig {
   std::optional<ContactOptions> contact;
   std::optional<PenaltyContactOptions> penalty_contact;
   std::optional<AorticRootConfig> aortic_root;
+  std::optional<ChordaeConfig> chordae;
+  std::optional<AnnulusMotionConfig> annulus_motion;
   std::vector<LeafletMaterialConfig> leaflet_materials;
   std::vector<double> load_increments{1.0};
   SolverKind solver = SolverKind::automatic;

@@ -225,6 +225,43 @@ TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
   return m;
 }
 
+namespace {
+
+// Points (doubles) of a poly data from rows of x.
+void set_points(vtkPolyData* pd, const MatX3& x) {
+  vtkNew<vtkPoints> pts;
+  pts->SetDataTypeToDouble();
+  pts->SetNumberOfPoints(x.rows());
+  for (Eigen::Index i = 0; i < x.rows(); ++i) pts->SetPoint(i, x(i, 0), x(i, 1), x(i, 2));
+  pd->SetPoints(pts);
+}
+
+// The caller's named arrays (checked against the point and cell counts) and SPACE=LPS.
+void add_named_arrays(vtkPolyData* pd, const std::vector<NamedArray>& arrays, Eigen::Index cells, const char* who) {
+  for (const auto& a : arrays) {
+    const Eigen::Index expected = a.per_cell ? cells : pd->GetNumberOfPoints();
+    if (a.values.rows() != expected) throw Error(std::string(who) + ": array " + a.name + " has the wrong length");
+    add_double_array(a.per_cell ? static_cast<vtkDataSetAttributes*>(pd->GetCellData())
+                                : static_cast<vtkDataSetAttributes*>(pd->GetPointData()),
+                     a.name, a.values);
+  }
+  vtkNew<vtkStringArray> space;
+  space->SetName("SPACE");
+  space->InsertNextValue("LPS");
+  pd->GetFieldData()->AddArray(space);
+}
+
+void write_vtp(const fs::path& path, const fs::path& tmp, vtkPolyData* pd) {
+  vtkNew<vtkXMLPolyDataWriter> w;
+  w->SetFileName(tmp.string().c_str());
+  w->SetInputData(pd);
+  w->SetDataModeToAppended();
+  w->EncodeAppendedDataOff();
+  if (w->Write() != 1) throw Error(path.string() + ": VTK could not write the file");
+}
+
+}  // namespace
+
 void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* positions,
                 const std::vector<NamedArray>& extra) {
   const std::string ext = lower_extension(path);
@@ -232,11 +269,7 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
   const MatX3& x = positions ? *positions : mesh.points;
   if (!x.allFinite()) throw NumericalError(path.string() + ": refusing to write non-finite coordinates");
   vtkNew<vtkPolyData> pd;
-  vtkNew<vtkPoints> pts;
-  pts->SetDataTypeToDouble();
-  pts->SetNumberOfPoints(x.rows());
-  for (Eigen::Index i = 0; i < x.rows(); ++i) pts->SetPoint(i, x(i, 0), x(i, 1), x(i, 2));
-  pd->SetPoints(pts);
+  set_points(pd, x);
   vtkNew<vtkCellArray> polys;
   for (const auto& t : mesh.triangles) {
     const vtkIdType ids[3] = {t[0], t[1], t[2]};
@@ -265,26 +298,11 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
     const MatX3 d = mesh.initial - mesh.points;
     add_double_array(pd->GetPointData(), "InitialDisplacement", d);
   }
-  for (const auto& a : extra) {
-    const Eigen::Index expected = a.per_cell ? mesh.num_triangles() : x.rows();
-    if (a.values.rows() != expected) throw Error("write_mesh: array " + a.name + " has the wrong length");
-    add_double_array(a.per_cell ? static_cast<vtkDataSetAttributes*>(pd->GetCellData())
-                                : static_cast<vtkDataSetAttributes*>(pd->GetPointData()),
-                     a.name, a.values);
-  }
-  vtkNew<vtkStringArray> space;
-  space->SetName("SPACE");
-  space->InsertNextValue("LPS");
-  pd->GetFieldData()->AddArray(space);
+  add_named_arrays(pd, extra, mesh.num_triangles(), "write_mesh");
   write_via_temp(path, [&](const fs::path& tmp) {
-    int ok;
+    int ok = 1;
     if (ext == ".vtp") {
-      vtkNew<vtkXMLPolyDataWriter> w;
-      w->SetFileName(tmp.string().c_str());
-      w->SetInputData(pd);
-      w->SetDataModeToAppended();
-      w->EncodeAppendedDataOff();
-      ok = w->Write();
+      write_vtp(path, tmp, pd);
     } else {
       vtkNew<vtkPolyDataWriter> w;
       w->SetFileName(tmp.string().c_str());
@@ -294,6 +312,22 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
     }
     if (ok != 1) throw Error(path.string() + ": VTK could not write the file");
   });
+}
+
+void write_lines(const fs::path& path, const MatX3& x, const std::vector<std::pair<int, int>>& lines,
+                 const std::vector<NamedArray>& arrays) {
+  if (lower_extension(path) != ".vtp") throw_input_error(path.string(), "extension", ".vtp", "\"" + lower_extension(path) + "\"");
+  if (!x.allFinite()) throw NumericalError(path.string() + ": refusing to write non-finite coordinates");
+  vtkNew<vtkPolyData> pd;
+  set_points(pd, x);
+  vtkNew<vtkCellArray> cells;
+  for (const auto& [a, b] : lines) {
+    const vtkIdType ids[2] = {a, b};
+    cells->InsertNextCell(2, ids);
+  }
+  pd->SetLines(cells);
+  add_named_arrays(pd, arrays, static_cast<Eigen::Index>(lines.size()), "write_lines");
+  write_via_temp(path, [&](const fs::path& tmp) { write_vtp(path, tmp, pd); });
 }
 
 void write_pvd(const fs::path& path, const std::vector<std::string>& files, const std::vector<double>& times) {

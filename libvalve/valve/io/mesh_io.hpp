@@ -30,6 +30,11 @@ TriMesh read_mesh(const std::filesystem::path& path, std::vector<NamedArray>* ex
 void write_mesh(const std::filesystem::path& path, const TriMesh& mesh, const MatX3* positions = nullptr,
                 const std::vector<NamedArray>& extra = {});
 
+/// Writes a line set (.vtp with line cells, for ParaView), e.g. chordae: `points` with
+/// per-point arrays, `lines` node pairs with per-line arrays (NamedArray::per_cell).
+void write_lines(const std::filesystem::path& path, const MatX3& points, const std::vector<std::pair<int, int>>& lines,
+                 const std::vector<NamedArray>& arrays = {});
+
 /// The point coordinates of any VTK XML data set (.vtu, .vtp), in file order: a frame of a
 /// model whose points follow its node numbering (Texas TriValve: point i = node i + 1).
 MatX3 read_point_positions(const std::filesystem::path& path);

@@ -1,5 +1,7 @@
 #include "valve/mechanics/mass_spring.hpp"
 
+#include "valve/mechanics/axial_pair.hpp"
+
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -55,16 +57,7 @@ void MassSpringTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJaco
     const Vec3 n = d / l;
     double F, dF;
     force(sp, l, F, dF);
-    node3(f, sp.a) += F * n;
-    node3(f, sp.b) -= F * n;
-    if (dfdx) {
-      const Mat3 nn = n * n.transpose();
-      const Mat3 K = dF * nn + (F / l) * (Mat3::Identity() - nn);
-      dfdx->add(sp.a, sp.a, -K);
-      dfdx->add(sp.b, sp.b, -K);
-      dfdx->add(sp.a, sp.b, K);
-      dfdx->add(sp.b, sp.a, K);
-    }
+    add_axial_pair(sp.a, sp.b, n, l, F, dF, f, dfdx);
   }
 }
 

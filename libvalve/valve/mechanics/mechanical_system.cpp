@@ -22,6 +22,11 @@ MechanicalSystem::MechanicalSystem(const TriMesh& mesh, double density, double t
   }
 }
 
+void MechanicalSystem::add_node_mass(int i, double mass) {
+  node_mass_[i] += mass;
+  dof_mass_.segment<3>(3 * i).setConstant(node_mass_[i] > 0 ? node_mass_[i] : 1.0);
+}
+
 void MechanicalSystem::add_term(std::unique_ptr<ForceTerm> term) {
   if (term->depends_on_velocity()) has_velocity_terms_ = true;
   if (auto* d = dynamic_cast<DampingTerm*>(term.get())) damping_ = d;

@@ -35,6 +35,10 @@ class MechanicalSystem {
   std::vector<char>& constrained() { return constrained_; }
   const std::vector<char>& constrained() const { return constrained_; }
   void fix_node(int i) { constrained_[3 * i] = constrained_[3 * i + 1] = constrained_[3 * i + 2] = 1; }
+  void free_node(int i) { constrained_[3 * i] = constrained_[3 * i + 1] = constrained_[3 * i + 2] = 0; }
+  /// Adds mass (g) to node i, e.g. chordae mass at a branch point, which belongs to no
+  /// triangle (the constructor fixed it for having none; free_node() releases it).
+  void add_node_mass(int i, double mass);
 
   /// f = Σ terms; fills dfdx()/dfdv() when asked. A Jacobian evaluation first lets terms
   /// with state-dependent couplings (contact) refresh them, rebuilding the pattern if needed. Returns false if any entry of f is not finite.

@@ -7,6 +7,7 @@
 #include "valve/core/error.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/mechanics/aortic_root.hpp"
+#include "valve/mechanics/chordae_rods.hpp"
 #include "valve/mechanics/contact.hpp"
 #include "valve/mechanics/penalty_contact.hpp"
 #include "valve/mechanics/damping.hpp"
@@ -86,11 +87,23 @@ void add_material_terms(const SceneConfig& sc, const TriMesh& m, MechanicalSyste
   }
 }
 
-std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriMesh& mesh) {
+namespace {
+
+std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriMesh& mesh, const SceneModel* model) {
   const std::string where = sc.file.string();
   TriMesh m = mesh;
   if (!sc.fixed.use_node_roles) m.roles.assign(m.num_nodes(), NodeRole::free);
+  if (model && model->annulus)  // the annulus moves to its targets and stays there
+    for (int i : model->annulus->nodes) m.roles[i] = NodeRole::fixed;
   auto sys = std::make_unique<MechanicalSystem>(m, sc.density, sc.thickness);
+  if (model && !model->attachment.rods.empty()) {
+    const ChordaeAttachment& a = model->attachment;
+    for (std::size_t k = 0; k < a.extra_mass.size(); ++k) {
+      const int node = a.mesh_nodes + static_cast<int>(k);
+      sys->add_node_mass(node, a.extra_mass[k]);
+      if (a.extra_roles[k] == NodeRole::free) sys->free_node(node);
+    }
+  }
   for (int i : sc.fixed.nodes) {
     if (i < 0 || i >= m.num_nodes())
       throw_input_error(where, "fixed.nodes", "node indices in [0, " + std::to_string(m.num_nodes() - 1) + "]", std::to_string(i));
@@ -121,6 +134,7 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
   if (sc.edge_loads)
     sys->add_term(std::make_unique<NodalLoadTerm>(
         biaxial_edge_forces(m, sc.edge_loads->stress_x, sc.edge_loads->stress_y, sc.thickness)));
+  if (model && !model->attachment.rods.empty()) sys->add_term(std::make_unique<ChordaeTerm>(model->attachment.rods));
   if (sc.damping) sys->add_term(std::make_unique<DampingTerm>(sys->node_masses(), sc.damping->mode, sc.damping->factor));
   sys->finalize();
 
@@ -131,6 +145,16 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
     throw_input_error(where, "fixed", "at least one constrained node (NodeRole fixed, fixed.nodes or fixed.pin_centre)",
                       "none: the model could move as a rigid body");
   return sys;
+}
+
+}  // namespace
+
+std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriMesh& mesh) {
+  return build_system(sc, mesh, nullptr);
+}
+
+std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const SceneModel& model) {
+  return build_system(sc, model.mesh, &model);
 }
 
 std::vector<int> resolve_monitor(const SceneConfig& sc, const TriMesh& m) {
@@ -160,6 +184,17 @@ std::vector<int> resolve_monitor(const SceneConfig& sc, const TriMesh& m) {
 
 namespace {
 
+// The scene's load increments; with annulus motion, first an equilibrium at zero pressure
+// with the annulus at its closed positions (seed 5.2.2: "first, mesh nodes lying on the
+// valve annulus are moved ...").
+std::vector<double> load_steps(const SceneConfig& sc) {
+  std::vector<double> loads = sc.load_increments;
+  if (!sc.annulus_motion) return loads;
+  if (!sc.pressure && !sc.edge_loads) return {0.0};  // nothing is loaded: the annulus step is all
+  if (loads.empty() || loads.front() != 0) loads.insert(loads.begin(), 0.0);
+  return loads;
+}
+
 SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks,
                           const std::vector<int>& monitor) {
   SimulationResult res;
@@ -168,8 +203,9 @@ SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, Mechanical
   Bdf2Integrator integ(sys, opt);
   integ.reset(flatten(mesh.start_positions()));
   if (hooks.on_step) integ.on_accepted = hooks.on_step;
-  for (size_t k = 0; k < sc.load_increments.size(); ++k) {
-    const double load = sc.load_increments[k];
+  const std::vector<double> loads = load_steps(sc);
+  for (size_t k = 0; k < loads.size(); ++k) {
+    const double load = loads[k];
     StepObserver obs = hooks.observer_for_increment ? hooks.observer_for_increment(static_cast<int>(k), load) : StepObserver{};
     IncrementResult inc{load, integ.run(load, obs)};
     if (k == 0)
@@ -189,9 +225,12 @@ SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, Mechanic
   SimulationResult res;
   res.x = flatten(mesh.start_positions());
   double previous = 0;
-  for (size_t k = 0; k < sc.load_increments.size(); ++k) {
-    const double load = sc.load_increments[k];
-    IncrementResult inc{load, solve_static(sys, res.x, sc.statics, load, previous)};
+  const std::vector<double> loads = load_steps(sc);
+  for (size_t k = 0; k < loads.size(); ++k) {
+    const double load = loads[k];
+    StaticOptions options = sc.statics;
+    if (load == 0) options.residual_reference_load = 1.0;
+    IncrementResult inc{load, solve_static(sys, res.x, options, load, previous)};
     previous = load;
     if (k == 0)
       res.summary = inc.summary;

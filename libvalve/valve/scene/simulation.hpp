@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_model.hpp"
 #include "valve/mechanics/mechanical_system.hpp"
 #include "valve/mesh/tri_mesh.hpp"
 #include "valve/solver/solver_summary.hpp"
@@ -16,6 +17,8 @@ namespace valve {
 /// Builds the mechanical system of a scene on `mesh`. Throws InputError when the scene
 /// leaves the model unconstrained or names nodes the mesh does not have.
 std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& scene, const TriMesh& mesh);
+/// The same for a model with chordae (rods, the branch points' mass) and annulus motion.
+std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& scene, const SceneModel& model);
 
 /// Which material each triangle takes: 0 for the scene's, g + 1 for leaflet_materials[g].
 /// Throws InputError when a leaflet is in two groups or a group names no leaflet of the mesh.

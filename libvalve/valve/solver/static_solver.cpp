@@ -41,8 +41,10 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
   trust = std::min(trust, sys.max_step_length());
   // Ψtc iterations at a fixed load factor; returns true when the residual tolerance is met.
   auto newton = [&](double load) -> bool {
-    const State s0{x, v, load, 0.0};
-    const double f_ext = std::max(free_norm(sys.external_force(s0), cons), 1e-300);
+    const State s0{x, v, opt.residual_reference_load > 0 ? opt.residual_reference_load : load, 0.0};
+    // Residuals are relative to the applied load; with none (annulus motion alone), to the
+    // first residual of this solve.
+    double f_ext = free_norm(sys.external_force(s0), cons);
     double delta = opt.initial_pseudo_step;
     for (int it = 0; it < opt.max_newton_iterations; ++it) {
       if (wall() > opt.max_wall_seconds) return false;
@@ -50,6 +52,7 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
       if (!sys.evaluate(s, f, true, false)) return false;
       ++sum.jacobian_evaluations;
       const double r0 = free_norm(f, cons);
+      if (!(f_ext > 0)) f_ext = std::max(r0, 1e-300);
       sum.relative_residual = r0 / f_ext;
       if (sum.relative_residual <= opt.relative_residual_tolerance) return true;
       bool accepted = false;

@@ -19,7 +19,8 @@
 namespace valve {
 
 struct StaticOptions {
-  double relative_residual_tolerance = 1e-9;  // |f_free| / |f_external_free|
+  double relative_residual_tolerance = 1e-9;  // |f_free| / |f_external_free| (without an
+                                              // external load: / the solve's first |f_free|)
   int max_newton_iterations = 500;            // per load increment
   double initial_increment = 1.0;             // first Δλ
   double initial_pseudo_step = 1e-2;          // δ0 in ms² (pseudo time step squared)
@@ -29,6 +30,10 @@ struct StaticOptions {
                                               // iteration, relative to its current length;
                                               // 0 = off (a 10 % limit slowed 20,000-triangle
                                               // closures from 122 to 300+ factorizations)
+  double residual_reference_load = 0;          // > 0: scale residuals by the external force at
+                                              // this load factor instead of the current one
+                                              // (a solve at load 0, e.g. annulus motion before
+                                              // the pressure, has no external force of its own)
   double min_increment = 1e-5;
   long max_increments = 2000;
   double max_wall_seconds = 600;

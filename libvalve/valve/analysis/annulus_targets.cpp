@@ -1,0 +1,118 @@
+#include "valve/analysis/annulus_targets.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "valve/core/error.hpp"
+#include "valve/mesh/topology.hpp"
+
+namespace valve {
+
+namespace {
+
+bool marked(const TriMesh& m, int i) {
+  return (i < static_cast<int>(m.roles.size()) && m.roles[i] == NodeRole::fixed) ||
+         (i < static_cast<int>(m.boundary.size()) && m.boundary[i] == BoundaryType::attached);
+}
+
+// A closed polyline parametrised by arc length fraction s in [0, 1).
+struct Ring {
+  MatX3 p;
+  std::vector<double> s;  // cumulative fraction at each vertex
+  double length = 0;
+
+  explicit Ring(const MatX3& points) : p(points) {
+    const int n = static_cast<int>(p.rows());
+    s.assign(n, 0.0);
+    for (int i = 1; i < n; ++i) s[i] = s[i - 1] + (p.row(i) - p.row(i - 1)).norm();
+    length = s[n - 1] + (p.row(0) - p.row(n - 1)).norm();
+    for (double& v : s) v /= length;
+  }
+  Vec3 at(double t) const {
+    t -= std::floor(t);
+    const int n = static_cast<int>(p.rows());
+    const int i = static_cast<int>(std::upper_bound(s.begin(), s.end(), t) - s.begin()) - 1;
+    const int j = (i + 1) % n;
+    const double s1 = j == 0 ? 1.0 : s[j];
+    const double w = s1 > s[i] ? (t - s[i]) / (s1 - s[i]) : 0.0;
+    return ((1 - w) * p.row(i) + w * p.row(j)).transpose();
+  }
+};
+
+MatX3 ring_points(const TriMesh& m, const std::vector<int>& ring) {
+  MatX3 p(static_cast<int>(ring.size()), 3);
+  for (std::size_t k = 0; k < ring.size(); ++k) p.row(k) = m.points.row(ring[k]);
+  return p;
+}
+
+MatX3 resample(const Ring& r, int count) {
+  MatX3 out(count, 3);
+  for (int k = 0; k < count; ++k) out.row(k) = r.at(static_cast<double>(k) / count).transpose();
+  return out;
+}
+
+}  // namespace
+
+MatX3 resample_ring(const MatX3& ring, int count) { return resample(Ring(ring), count); }
+
+std::vector<int> annulus_ring(const TriMesh& mesh) {
+  const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
+  const std::vector<int>* best = nullptr;
+  long best_count = 0;
+  for (const auto& loop : topo.loops) {
+    const long c = std::count_if(loop.begin(), loop.end(), [&](int i) { return marked(mesh, i); });
+    if (c > best_count) best_count = c, best = &loop;
+  }
+  std::vector<int> ring;
+  if (best)
+    for (int i : *best)
+      if (marked(mesh, i)) ring.push_back(i);
+  return ring;
+}
+
+AnnulusTargets annulus_targets(const TriMesh& open, const TriMesh& closed, bool register_rigidly,
+                               const std::string& open_file, const std::string& closed_file) {
+  const std::vector<int> open_ring = annulus_ring(open), closed_ring = annulus_ring(closed);
+  if (open_ring.size() < 3)
+    throw_input_error(open_file, "NodeRole", "an annulus: a boundary loop with fixed or attached nodes",
+                      std::to_string(open_ring.size()) + " such nodes");
+  if (closed_ring.size() < 3)
+    throw_input_error(closed_file, "NodeRole", "an annulus: a boundary loop with fixed or attached nodes",
+                      std::to_string(closed_ring.size()) + " such nodes");
+  AnnulusTargets out;
+  out.nodes = open_ring;
+  const Ring open_curve(ring_points(open, open_ring));
+  MatX3 closed_points = ring_points(closed, closed_ring);
+  if (register_rigidly) {
+    // Dense samples of both rings so the registration does not depend on node spacing.
+    const IcpResult icp = icp_point_to_point(resample(Ring(closed_points), 720), resample(open_curve, 720));
+    out.registration = icp.transform;
+    out.ring_rms_mm = icp.rms;
+    closed_points = icp.transform.apply(closed_points);
+  }
+  const Ring closed_curve(closed_points);
+  out.open_length_mm = open_curve.length;
+  out.closed_length_mm = closed_curve.length;
+  // Start and sense of the closed ring: the best of 720 offsets in each sense.
+  const int n = static_cast<int>(open_ring.size());
+  double best = 1e300, best_offset = 0;
+  int best_sense = 1;
+  for (int sense : {1, -1})
+    for (int k = 0; k < 720; ++k) {
+      const double offset = k / 720.0;
+      double sum = 0;
+      for (int i = 0; i < n && sum < best; ++i)
+        sum += (closed_curve.at(offset + sense * open_curve.s[i]) - open_curve.p.row(i).transpose()).squaredNorm();
+      if (sum < best) best = sum, best_offset = offset, best_sense = sense;
+    }
+  out.targets.resize(n, 3);
+  for (int i = 0; i < n; ++i) {
+    out.targets.row(i) = closed_curve.at(best_offset + best_sense * open_curve.s[i]).transpose();
+    const double d = (out.targets.row(i) - open_curve.p.row(i)).norm();
+    out.mean_motion_mm += d / n;
+    out.max_motion_mm = std::max(out.max_motion_mm, d);
+  }
+  return out;
+}
+
+}  // namespace valve

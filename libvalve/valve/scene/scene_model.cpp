@@ -1,0 +1,115 @@
+#include "valve/scene/scene_model.hpp"
+
+#include <algorithm>
+
+#include "valve/config/json_reader.hpp"
+#include "valve/core/error.hpp"
+
+namespace valve {
+
+namespace {
+
+// Keeps the segments of the listed types and the points they use.
+ChordaeNetwork keep_types(const ChordaeNetwork& in, const std::vector<std::string>& types) {
+  ChordaeNetwork out;
+  out.diameter = in.diameter;
+  std::vector<int> index(in.points.size(), -1);
+  for (const ChordSegment& s : in.segments) {
+    if (std::find(types.begin(), types.end(), to_string(s.type)) == types.end()) continue;
+    for (int p : {s.from, s.to})
+      if (index[p] < 0) {
+        index[p] = static_cast<int>(out.points.size());
+        out.points.push_back(in.points[p]);
+      }
+    ChordSegment t = s;
+    t.from = index[s.from];
+    t.to = index[s.to];
+    out.segments.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace
+
+TriMesh SceneModel::leaflets() const {
+  TriMesh m = mesh;
+  m.points.conservativeResize(leaflet_nodes, 3);
+  if (m.initial.rows() > leaflet_nodes) m.initial.conservativeResize(leaflet_nodes, 3);
+  m.roles.resize(leaflet_nodes);
+  m.boundary.resize(leaflet_nodes);
+  return m;
+}
+
+MatX3 spread_displacement(const MatX3& rest, const std::vector<int>& moved, const MatX3& displacement) {
+  MatX3 u = MatX3::Zero(rest.rows(), 3);
+  std::vector<char> is_moved(rest.rows(), 0);
+  for (std::size_t k = 0; k < moved.size(); ++k) {
+    u.row(moved[k]) = displacement.row(k);
+    is_moved[moved[k]] = 1;
+  }
+  for (int i = 0; i < rest.rows(); ++i) {
+    if (is_moved[i]) continue;
+    Vec3 sum = Vec3::Zero();
+    double wsum = 0;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+      const double d2 = std::max((rest.row(i) - rest.row(moved[k])).squaredNorm(), 1e-12);
+      sum += displacement.row(k).transpose() / d2;
+      wsum += 1 / d2;
+    }
+    if (wsum > 0) u.row(i) = (sum / wsum).transpose();
+  }
+  return u;
+}
+
+SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, const TriMesh* closed) {
+  SceneModel model;
+  model.mesh = leaflets;
+  model.mesh.fill_defaults();
+  model.leaflet_nodes = leaflets.num_nodes();
+  if (sc.annulus_motion) {
+    if (!closed) throw Error("prepare_scene_model: the scene moves the annulus but no closed mesh was given");
+    model.annulus = annulus_targets(leaflets, *closed, sc.annulus_motion->register_rigidly, sc.mesh_path.string(),
+                                    sc.annulus_motion->closed_mesh.string());
+    const MatX3& start = leaflets.start_positions();
+    MatX3 disp(static_cast<int>(model.annulus->nodes.size()), 3);
+    for (std::size_t k = 0; k < model.annulus->nodes.size(); ++k)
+      disp.row(k) = model.annulus->targets.row(k) - start.row(model.annulus->nodes[k]);
+    model.mesh.initial = start + spread_displacement(start, model.annulus->nodes, disp);
+    for (int i : model.annulus->nodes) model.mesh.roles[i] = NodeRole::fixed;
+  }
+  if (sc.chordae) {
+    const ChordaeConfig& cc = *sc.chordae;
+    ChordaeNetwork net = read_chordae_json(load_json_file(cc.file), cc.file.string());
+    if (cc.diameter > 0) net.diameter = cc.diameter;
+    // Insertions snapped to another mesh (or not at all) are snapped to this one; a node
+    // index is trusted only when the node sits where the file says.
+    for (ChordPoint& p : net.points)
+      if (p.kind == ChordPointKind::insertion && p.mesh_node >= 0 &&
+          (p.mesh_node >= leaflets.num_nodes() || (leaflets.points.row(p.mesh_node).transpose() - p.position).norm() > 1e-6))
+        p.mesh_node = -1;
+    snap_insertions(net, leaflets.points, cc.snap_tolerance, cc.file.string());
+    net = keep_types(net, cc.types);
+    if (net.segments.empty())
+      throw_input_error(sc.file.string(), "chordae.types", "types present in " + cc.file.string(), "no chord of those types");
+    for (ChordSegment& s : net.segments) s.scale *= cc.rest_length_scale;
+    model.attachment = attach_chordae(net, leaflets.num_nodes(), ChordMaterial{cc.youngs_modulus, sc.density});
+    if (!cc.papillary_tips.empty()) {
+      std::vector<int> tips;
+      for (std::size_t p = 0; p < net.points.size(); ++p)
+        if (net.points[p].kind == ChordPointKind::papillary_tip) tips.push_back(model.attachment.point_node[p] - model.leaflet_nodes);
+      if (tips.size() != cc.papillary_tips.size())
+        throw_input_error(sc.file.string(), "chordae.papillary_tips", std::to_string(tips.size()) + " positions (one per tip in " + cc.file.string() + ")",
+                          std::to_string(cc.papillary_tips.size()));
+      // The rest lengths stay those of the open geometry; only the start positions move.
+      model.mesh = with_chordae_nodes(model.mesh, model.attachment);
+      if (model.mesh.initial.rows() != model.mesh.num_nodes()) model.mesh.initial = model.mesh.points;
+      for (std::size_t k = 0; k < tips.size(); ++k) model.mesh.initial.row(model.leaflet_nodes + tips[k]) = cc.papillary_tips[k].transpose();
+    } else {
+      model.mesh = with_chordae_nodes(model.mesh, model.attachment);
+    }
+    model.chordae = net;
+  }
+  return model;
+}
+
+}  // namespace valve

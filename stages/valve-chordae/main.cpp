@@ -1,0 +1,107 @@
+// valve-chordae --mesh LEAFLETS.vtp (--from CHORDAE.json | --markups CURVE.mrk.json ...) --out DIR
+//               [--snap-tolerance 1.5] [--merge-distance 0.3] [--scale SEGMENT=FACTOR ...]
+//               [--name chordae] [--quiet]
+// Puts a chordae network on a leaflet mesh (seed 5.2.2): every insertion is snapped to the
+// nearest mesh node (an insertion farther than --snap-tolerance mm is an error naming the
+// chord), rest lengths come from the open geometry times a per-chord scale (--scale i=f on
+// segment i, e.g. 0.9 to shorten a chord by 10 % as a repair does). From Slicer markup curves
+// (.mrk.json) each curve runs from a papillary tip to an insertion; chords landing on the
+// free edge are primary, the others secondary, curves named "strut" struts.
+// Writes DIR/chordae.json (the form valve-simulate's chordae.file reads), DIR/chordae.vtp
+// (lines for ParaView) and DIR/chordae.summary.json.
+// Not here: chordae extracted from the segmentation (Debian's ITK 5.2 has no 3-D thinning).
+#include <cstdio>
+#include <filesystem>
+
+#include "valve/chordae/chordae_attachment.hpp"
+#include "valve/chordae/slicer_markups.hpp"
+#include "valve/config/json_reader.hpp"
+#include "valve/core/atomic_file.hpp"
+#include "valve/core/cli.hpp"
+#include "valve/core/error.hpp"
+#include "valve/core/stage_arguments.hpp"
+#include "valve/io/chordae_io.hpp"
+#include "valve/io/mesh_io.hpp"
+
+using namespace valve;
+namespace fs = std::filesystem;
+
+int main(int argc, char** argv) {
+  return run_stage("valve-chordae", [&] {
+    const std::vector<std::string> keys{"mesh", "from", "markups", "snap-tolerance", "merge-distance", "scale", "name"};
+    CommandLine cl(argc, argv, {"out", "config", "mesh", "from", "markups", "snap-tolerance", "merge-distance", "scale", "name"},
+                   {"quiet"});
+    const fs::path out = cl.require("out");
+    StageArguments args(cl, keys);
+    const fs::path mesh_file = args.text("mesh", "");
+    if (mesh_file.empty()) throw InputError("valve-chordae: --mesh: expected the leaflet mesh (.vtp), found nothing");
+    const std::string from = args.text("from", "");
+    const std::vector<std::string> markups = cl.get_all("markups");
+    if (from.empty() == markups.empty())
+      throw InputError("valve-chordae: expected exactly one source, --from CHORDAE.json or --markups CURVE.mrk.json, found " +
+                       std::string(from.empty() ? "neither" : "both"));
+    const double tolerance = args.length_mm("snap-tolerance", 1.5, 0, 100);
+    const double merge = args.length_mm("merge-distance", 0.3, 0, 10);
+    const std::string name = args.text("name", "chordae");
+
+    const TriMesh mesh = read_mesh(mesh_file);
+    ChordaeNetwork net;
+    std::string source;
+    if (!from.empty()) {
+      net = read_chordae_json(load_json_file(from), from);
+      for (ChordPoint& p : net.points) p.mesh_node = -1;  // snapped to this mesh, whatever they were
+      source = from;
+    } else {
+      std::vector<fs::path> files(markups.begin(), markups.end());
+      net = read_slicer_curves(files, merge);
+      source = markups.front();
+    }
+    // Snap first (positions become mesh nodes), then the checks of a chordae.json.
+    snap_insertions(net, mesh.points, tolerance, source);
+    if (!markups.empty()) classify_by_insertion(net, mesh);
+    net = read_chordae_json(to_json(net), source);
+    for (const std::string& s : cl.get_all("scale")) {
+      const auto eq = s.find('=');
+      char* end = nullptr;
+      const long index = eq == std::string::npos ? -1 : std::strtol(s.c_str(), &end, 10);
+      const double factor = eq == std::string::npos ? 0 : std::strtod(s.c_str() + eq + 1, nullptr);
+      if (eq == std::string::npos || index < 0 || index >= static_cast<long>(net.segments.size()) || !(factor >= 0.2 && factor <= 5))
+        throw InputError("valve-chordae: --scale: expected SEGMENT=FACTOR with SEGMENT in [0, " + std::to_string(net.segments.size() - 1) +
+                         "] and FACTOR in [0.2, 5], found \"" + s + "\"");
+      net.segments[index].scale = factor;
+    }
+    // Rest lengths are fixed now, from the open geometry, so that later edits of the
+    // positions (closed-state papillary tips) do not change them.
+    for (std::size_t s = 0; s < net.segments.size(); ++s) net.segments[s].rest_length = net.rest_length(static_cast<int>(s));
+
+    double total = 0, longest = 0;
+    for (std::size_t s = 0; s < net.segments.size(); ++s) {
+      total += net.segments[s].rest_length;
+      longest = std::max(longest, net.segments[s].rest_length);
+    }
+    fs::create_directories(out);
+    write_file_atomic(out / (name + ".json"), to_json(net).dump(1) + "\n");
+    write_chordae_vtp(out / (name + ".vtp"), net);
+    StageSummary summary("chordae", out);
+    summary.add_input("mesh", mesh_file);
+    summary.add_input("source", source);
+    for (std::size_t k = 1; k < markups.size(); ++k) summary.add_input("markups_" + std::to_string(k), markups[k]);
+    summary.parameters() = args.used();
+    summary.parameters()["scale"] = cl.get_all("scale");
+    summary.metrics() = {{"segments", net.segments.size()},
+                         {"primary", net.count(ChordType::primary)},
+                         {"secondary", net.count(ChordType::secondary)},
+                         {"strut", net.count(ChordType::strut)},
+                         {"papillary_tips", net.count(ChordPointKind::papillary_tip)},
+                         {"branch_points", net.count(ChordPointKind::branch)},
+                         {"insertions", net.count(ChordPointKind::insertion)},
+                         {"total_rest_length_mm", total},
+                         {"longest_segment_mm", longest}};
+    summary.write();
+    if (!cl.has("quiet"))
+      std::printf("valve-chordae: %zu segments (%d primary, %d secondary, %d strut), %d insertions on %s -> %s\n",
+                  net.segments.size(), net.count(ChordType::primary), net.count(ChordType::secondary), net.count(ChordType::strut),
+                  net.count(ChordPointKind::insertion), mesh_file.string().c_str(), (out / (name + ".json")).string().c_str());
+    return 0;
+  });
+}

@@ -1,0 +1,58 @@
+// Tension-only chordae rods (seed 5.2.2, Table 5.1): the force of a stretched rod against
+// Hooke's law, nothing when slack, the Jacobian against finite differences and the force
+// against the energy's gradient.
+#include <catch2/catch.hpp>
+
+#include "support/test_meshes.hpp"
+#include "valve/mechanics/chordae_rods.hpp"
+
+using namespace valve;
+
+namespace {
+// EA of the seed's chord: E = 40 MPa, D = 0.5 mm: 40 · π · 0.5² / 4 = 7.854 N.
+const double kEA = 40.0 * M_PI * 0.5 * 0.5 / 4;
+}
+
+TEST_CASE("a stretched chord pulls with EA (L - L0) / L0 along itself; a slack one does nothing", "[chordae]") {
+  ChordaeTerm term({Rod{0, 1, 10.0, kEA}});
+  VecX x(6), v = VecX::Zero(6), f = VecX::Zero(6);
+  const Vec3 dir = Vec3(1, 2, 2) / 3.0;
+  node3(x, 0) = Vec3(1, -1, 2);
+  node3(x, 1) = node3(x, 0) + 10.5 * dir;  // 5 % stretch
+  term.add(State{x, v, 1, 0}, f, nullptr, nullptr);
+  const double T = kEA * 0.05;  // 0.3927 N
+  CHECK((node3(f, 0) - T * dir).norm() < 1e-12);
+  CHECK((node3(f, 1) + T * dir).norm() < 1e-12);
+  CHECK(term.tensions(x)[0] == Approx(T).epsilon(1e-12));
+  node3(x, 1) = node3(x, 0) + 9.0 * dir;  // slack
+  f.setZero();
+  term.add(State{x, v, 1, 0}, f, nullptr, nullptr);
+  CHECK(f.norm() == 0);
+  double e = 0;
+  term.energy(State{x, v, 1, 0}, e);
+  CHECK(e == 0);
+}
+
+TEST_CASE("chordae Jacobian matches finite differences and force is minus the energy gradient", "[chordae]") {
+  // A branch point (node 1) between a tip (0) and two insertions (2, 3); one rod slack.
+  std::vector<Rod> rods{{0, 1, 8.0, kEA}, {1, 2, 3.0, kEA}, {1, 3, 5.0, kEA}};
+  ChordaeTerm term(rods);
+  VecX x(12), v = VecX::Zero(12);
+  x << 0, 0, -20, 0.3, 0.2, -11.5, 2.5, 0.4, -9.0, -1.0, 0.5, -9.5;
+  REQUIRE(term.tensions(x)[0] > 0);
+  REQUIRE(term.tensions(x)[1] > 0);
+  REQUIRE(term.tensions(x)[2] == 0);
+  const Eigen::MatrixXd A = test::analytic_dfdx(term, 4, x, v, 1);
+  const Eigen::MatrixXd N = test::numeric_dfdx(term, x, v, 1, 1e-6);
+  CHECK(test::relative_difference(A, N) < 1e-6);
+  VecX f = VecX::Zero(12);
+  term.add(State{x, v, 1, 0}, f, nullptr, nullptr);
+  for (int i = 0; i < 12; ++i) {
+    VecX xp = x, xm = x;
+    xp[i] += 1e-6, xm[i] -= 1e-6;
+    double ep = 0, em = 0;
+    term.energy(State{xp, v, 1, 0}, ep);
+    term.energy(State{xm, v, 1, 0}, em);
+    CHECK(f[i] == Approx(-(ep - em) / 2e-6).margin(1e-6));
+  }
+}
