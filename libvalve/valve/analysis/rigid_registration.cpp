@@ -3,6 +3,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "valve/mesh/closest_point.hpp"
+
 namespace valve {
 
 MatX3 RigidTransform::apply(const MatX3& points) const {
@@ -26,16 +28,11 @@ IcpResult icp_point_to_point(const MatX3& source, const MatX3& target, const Icp
   for (int it = 0; it < options.max_iterations; ++it) {
     double sum = 0;
     for (int i = 0; i < n; ++i) {
-      const Vec3 p = res.transform.apply(Vec3(source.row(i).transpose()));
-      int best = 0;
-      double bd = 1e300;
-      for (int j = 0; j < target.rows(); ++j) {
-        const double d = (target.row(j).transpose() - p).squaredNorm();
-        if (d < bd) bd = d, best = j;
-      }
+      double d = 0;
+      const int best = nearest_point_index(target, res.transform.apply(Vec3(source.row(i).transpose())), &d);
       src.col(i) = source.row(i).transpose();
       dst.col(i) = target.row(best).transpose();
-      sum += bd;
+      sum += d * d;
     }
     res.rms = std::sqrt(sum / n);
     res.iterations = it + 1;

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "valve/core/error.hpp"
+#include "valve/mesh/closest_point.hpp"
 
 namespace valve {
 
@@ -11,13 +12,8 @@ void snap_insertions(ChordaeNetwork& network, const MatX3& mesh_points, double t
   for (std::size_t i = 0; i < network.points.size(); ++i) {
     ChordPoint& p = network.points[i];
     if (p.kind != ChordPointKind::insertion) continue;
-    int best = -1;
-    double best_d = 1e300;
-    for (int n = 0; n < mesh_points.rows(); ++n) {
-      const double d = (mesh_points.row(n).transpose() - p.position).squaredNorm();
-      if (d < best_d) best_d = d, best = n;
-    }
-    best_d = std::sqrt(best_d);
+    double best_d = 0;
+    const int best = nearest_point_index(mesh_points, p.position, &best_d);
     if (best < 0 || best_d > tolerance) {
       char found[96];
       std::snprintf(found, sizeof found, "the nearest mesh node %.2f mm away", best_d);

@@ -149,58 +149,38 @@ double JsonReader::quantity(const std::string& key, Dimension dim,
   return x;
 }
 
-std::vector<double> JsonReader::number_list(const std::string& key,
-                                            std::optional<std::vector<double>> fallback) {
+template <class T, class Accept>
+std::vector<T> JsonReader::list(const std::string& key, std::optional<std::vector<T>> fallback, const char* what,
+                                const char* element_what, Accept accept) {
   const json* v = find(key);
-  std::vector<double> out;
+  std::vector<T> out;
   if (!v) {
-    if (!fallback) fail(key, "a list of numbers", "nothing (the key is required)");
+    if (!fallback) fail(key, what, "nothing (the key is required)");
     out = *fallback;
   } else {
-    if (!v->is_array()) fail(key, "a list of numbers", describe_json(*v));
+    if (!v->is_array()) fail(key, what, describe_json(*v));
     for (const auto& e : *v) {
-      if (!e.is_number() || !std::isfinite(e.get<double>())) fail(key, "a list of finite numbers", describe_json(*v));
-      out.push_back(e.get<double>());
+      if (!accept(e)) fail(key, element_what, describe_json(*v));
+      out.push_back(e.get<T>());
     }
   }
   used_[key] = out;
   return out;
 }
 
-std::vector<std::string> JsonReader::string_list(const std::string& key,
-                                                  std::optional<std::vector<std::string>> fallback) {
-  const json* v = find(key);
-  std::vector<std::string> out;
-  if (!v) {
-    if (!fallback) fail(key, "a list of strings", "nothing (the key is required)");
-    out = *fallback;
-  } else {
-    if (!v->is_array()) fail(key, "a list of strings", describe_json(*v));
-    for (const auto& e : *v) {
-      if (!e.is_string()) fail(key, "a list of strings", describe_json(*v));
-      out.push_back(e.get<std::string>());
-    }
-  }
-  used_[key] = out;
-  return out;
+std::vector<double> JsonReader::number_list(const std::string& key, std::optional<std::vector<double>> fallback) {
+  return list<double>(key, std::move(fallback), "a list of numbers", "a list of finite numbers",
+                      [](const json& e) { return e.is_number() && std::isfinite(e.get<double>()); });
 }
 
-std::vector<int> JsonReader::integer_list(const std::string& key,
-                                          std::optional<std::vector<int>> fallback) {
-  const json* v = find(key);
-  std::vector<int> out;
-  if (!v) {
-    if (!fallback) fail(key, "a list of integers", "nothing (the key is required)");
-    out = *fallback;
-  } else {
-    if (!v->is_array()) fail(key, "a list of integers", describe_json(*v));
-    for (const auto& e : *v) {
-      if (!e.is_number_integer()) fail(key, "a list of integers", describe_json(*v));
-      out.push_back(e.get<int>());
-    }
-  }
-  used_[key] = out;
-  return out;
+std::vector<std::string> JsonReader::string_list(const std::string& key, std::optional<std::vector<std::string>> fallback) {
+  return list<std::string>(key, std::move(fallback), "a list of strings", "a list of strings",
+                           [](const json& e) { return e.is_string(); });
+}
+
+std::vector<int> JsonReader::integer_list(const std::string& key, std::optional<std::vector<int>> fallback) {
+  return list<int>(key, std::move(fallback), "a list of integers", "a list of integers",
+                   [](const json& e) { return e.is_number_integer(); });
 }
 
 JsonReader JsonReader::object(const std::string& key) {

@@ -65,6 +65,10 @@ class JsonReader {
 
  private:
   const json* find(const std::string& key);
+  // A list whose elements `accept` admits; messages say `what` (the list) and `element_what`.
+  template <class T, class Accept>
+  std::vector<T> list(const std::string& key, std::optional<std::vector<T>> fallback, const char* what,
+                      const char* element_what, Accept accept);
 
   const json& object_;
   std::string file_, path_;

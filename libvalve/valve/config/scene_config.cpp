@@ -9,6 +9,11 @@ std::string to_string(ModelKind m) { return m == ModelKind::mass_spring ? "mass_
 
 namespace {
 
+// A path from the scene: relative ones are taken from the scene file's folder.
+fs::path resolve(const fs::path& base_dir, const std::string& path) {
+  return fs::path(path).is_absolute() ? fs::path(path) : base_dir / path;
+}
+
 void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.truncation_tolerance = r.quantity("truncation_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
   o.displacement_tolerance = r.quantity("displacement_tolerance", Dimension::length, std::string("1e-5 mm"), 1e-15, 10);
@@ -51,8 +56,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   JsonReader r(j, file);
   SceneConfig sc;
   sc.file = file;
-  const std::string mesh = r.string("mesh");
-  sc.mesh_path = fs::path(mesh).is_absolute() ? fs::path(mesh) : base_dir / mesh;
+  sc.mesh_path = resolve(base_dir, r.string("mesh"));
   sc.model = r.choice("model", {"mass_spring", "membrane_fe"}) == "mass_spring" ? ModelKind::mass_spring
                                                                                 : ModelKind::membrane_fe;
   {
@@ -173,8 +177,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   if (r.has("chordae")) {
     JsonReader c = r.object("chordae");
     ChordaeConfig cc;
-    const std::string f = c.string("file");
-    cc.file = fs::path(f).is_absolute() ? fs::path(f) : base_dir / f;
+    cc.file = resolve(base_dir, c.string("file"));
     cc.youngs_modulus = c.quantity("youngs_modulus", Dimension::pressure, std::string("40 MPa"), 1e-6, 1e6);
     cc.diameter = c.quantity("diameter", Dimension::length, std::string("0 mm"), 0.0, 10);
     cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, std::string("1 mm"), 0.0, 100);
@@ -197,8 +200,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   if (r.has("annulus_motion")) {
     JsonReader a = r.object("annulus_motion");
     AnnulusMotionConfig ac;
-    const std::string f = a.string("closed_mesh");
-    ac.closed_mesh = fs::path(f).is_absolute() ? fs::path(f) : base_dir / f;
+    ac.closed_mesh = resolve(base_dir, a.string("closed_mesh"));
     ac.register_rigidly = a.boolean("register", true);
     r.record("annulus_motion", a.finish());
     sc.annulus_motion = ac;

@@ -1,8 +1,22 @@
 #include "valve/mesh/closest_point.hpp"
 
 #include <algorithm>
+#include <limits>
+
+#include <cmath>
 
 namespace valve {
+
+int nearest_point_index(const MatX3& points, const Vec3& p, double* distance) {
+  int best = -1;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < points.rows(); ++i) {
+    const double d2 = (points.row(i).transpose() - p).squaredNorm();
+    if (d2 < best_d2) best_d2 = d2, best = i;
+  }
+  if (distance) *distance = std::sqrt(best_d2);
+  return best;
+}
 
 Vec3 closest_point_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
   const Vec3 ab = b - a, ac = c - a, ap = p - a;

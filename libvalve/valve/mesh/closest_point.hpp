@@ -9,6 +9,10 @@
 
 namespace valve {
 
+/// Index of the row of `points` nearest to p (brute force; -1 if there are none), and its
+/// distance in `distance` when given.
+int nearest_point_index(const MatX3& points, const Vec3& p, double* distance = nullptr);
+
 /// Closest point of triangle (a, b, c) to p as barycentric weights (w_a, w_b, w_c).
 Vec3 closest_point_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
 /// Parameters (s, t) of the closest points a + s (b − a), c + t (d − c) of two segments.

@@ -29,17 +29,9 @@ ChordaeNetwork keep_types(const ChordaeNetwork& in, const std::vector<std::strin
   return out;
 }
 
-}  // namespace
-
-TriMesh SceneModel::leaflets() const {
-  TriMesh m = mesh;
-  m.points.conservativeResize(leaflet_nodes, 3);
-  if (m.initial.rows() > leaflet_nodes) m.initial.conservativeResize(leaflet_nodes, 3);
-  m.roles.resize(leaflet_nodes);
-  m.boundary.resize(leaflet_nodes);
-  return m;
-}
-
+// Starting guess for the free nodes when some nodes are moved by `displacement`: each free
+// node moves by the inverse-square-distance weighted mean of the moved nodes' displacements
+// (Shepard interpolation), so the first equilibrium solve starts without folded triangles.
 MatX3 spread_displacement(const MatX3& rest, const std::vector<int>& moved, const MatX3& displacement) {
   MatX3 u = MatX3::Zero(rest.rows(), 3);
   std::vector<char> is_moved(rest.rows(), 0);
@@ -61,6 +53,8 @@ MatX3 spread_displacement(const MatX3& rest, const std::vector<int>& moved, cons
   return u;
 }
 
+}  // namespace
+
 SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, const TriMesh* closed) {
   SceneModel model;
   model.mesh = leaflets;
@@ -74,8 +68,8 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
     MatX3 disp(static_cast<int>(model.annulus->nodes.size()), 3);
     for (std::size_t k = 0; k < model.annulus->nodes.size(); ++k)
       disp.row(k) = model.annulus->targets.row(k) - start.row(model.annulus->nodes[k]);
+    // build_system fixes the annulus nodes (whatever the scene says of node roles).
     model.mesh.initial = start + spread_displacement(start, model.annulus->nodes, disp);
-    for (int i : model.annulus->nodes) model.mesh.roles[i] = NodeRole::fixed;
   }
   if (sc.chordae) {
     const ChordaeConfig& cc = *sc.chordae;
@@ -93,6 +87,7 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
       throw_input_error(sc.file.string(), "chordae.types", "types present in " + cc.file.string(), "no chord of those types");
     for (ChordSegment& s : net.segments) s.scale *= cc.rest_length_scale;
     model.attachment = attach_chordae(net, leaflets.num_nodes(), ChordMaterial{cc.youngs_modulus, sc.density});
+    model.mesh = with_chordae_nodes(model.mesh, model.attachment);
     if (!cc.papillary_tips.empty()) {
       std::vector<int> tips;
       for (std::size_t p = 0; p < net.points.size(); ++p)
@@ -101,11 +96,8 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
         throw_input_error(sc.file.string(), "chordae.papillary_tips", std::to_string(tips.size()) + " positions (one per tip in " + cc.file.string() + ")",
                           std::to_string(cc.papillary_tips.size()));
       // The rest lengths stay those of the open geometry; only the start positions move.
-      model.mesh = with_chordae_nodes(model.mesh, model.attachment);
       if (model.mesh.initial.rows() != model.mesh.num_nodes()) model.mesh.initial = model.mesh.points;
       for (std::size_t k = 0; k < tips.size(); ++k) model.mesh.initial.row(model.leaflet_nodes + tips[k]) = cc.papillary_tips[k].transpose();
-    } else {
-      model.mesh = with_chordae_nodes(model.mesh, model.attachment);
     }
     model.chordae = net;
   }

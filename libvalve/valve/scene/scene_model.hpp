@@ -19,8 +19,6 @@ struct SceneModel {
   ChordaeAttachment attachment;           // rods and chordae node masses (empty without chordae)
   std::optional<AnnulusTargets> annulus;
 
-  /// The leaflet mesh alone (the extra nodes dropped), for output.
-  TriMesh leaflets() const;
   /// The first leaflet_nodes positions of a state vector.
   VecX leaflet_state(const VecX& x) const { return x.head(3 * leaflet_nodes); }
 };
@@ -29,10 +27,5 @@ struct SceneModel {
 /// `closed` is the closed-state mesh the scene's annulus_motion names (required then).
 /// Without chordae or annulus motion the model is the mesh itself.
 SceneModel prepare_scene_model(const SceneConfig& scene, const TriMesh& leaflets, const TriMesh* closed = nullptr);
-
-/// Starting guess for the free nodes when some nodes are moved by `displacement`: each free
-/// node moves by the inverse-square-distance weighted mean of the moved nodes' displacements
-/// (Shepard interpolation), so the first equilibrium solve starts without folded triangles.
-MatX3 spread_displacement(const MatX3& rest, const std::vector<int>& moved, const MatX3& displacement);
 
 }  // namespace valve

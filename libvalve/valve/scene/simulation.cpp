@@ -8,6 +8,7 @@
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/mechanics/aortic_root.hpp"
 #include "valve/mechanics/chordae_rods.hpp"
+#include "valve/mesh/closest_point.hpp"
 #include "valve/mechanics/contact.hpp"
 #include "valve/mechanics/penalty_contact.hpp"
 #include "valve/mechanics/damping.hpp"
@@ -112,13 +113,7 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
   if (sc.fixed.planar)
     for (int i = 0; i < m.num_nodes(); ++i) sys->constrained()[3 * i + 2] = 1;
   if (sc.fixed.pin_centre) {
-    const Vec3 c = m.points.colwise().mean();
-    int centre = 0;
-    double best = 1e300;
-    for (int i = 0; i < m.num_nodes(); ++i) {
-      const double d = (m.points.row(i).transpose() - c).norm();
-      if (d < best) best = d, centre = i;
-    }
+    const int centre = nearest_point_index(m.points, m.points.colwise().mean().transpose());
     sys->constrained()[3 * centre] = sys->constrained()[3 * centre + 1] = 1;
   }
   // Model only what the scene requires: each block below exists only if declared.
@@ -164,15 +159,8 @@ std::vector<int> resolve_monitor(const SceneConfig& sc, const TriMesh& m) {
       if (sc.monitor.node >= m.num_nodes())
         throw_input_error(sc.file.string(), "monitor", "a node index below " + std::to_string(m.num_nodes()), std::to_string(sc.monitor.node));
       return {sc.monitor.node};
-    case MonitorConfig::Kind::nearest_point: {
-      int best = 0;
-      double bd = 1e300;
-      for (int i = 0; i < m.num_nodes(); ++i) {
-        const double d = (m.points.row(i).transpose() - sc.monitor.point).norm();
-        if (d < bd) bd = d, best = i;
-      }
-      return {best};
-    }
+    case MonitorConfig::Kind::nearest_point:
+      return {nearest_point_index(m.points, sc.monitor.point)};
     case MonitorConfig::Kind::free_edge_middle: {
       const int n = free_edge_middle_node(m, 0);
       if (n < 0) throw_input_error(sc.file.string(), "monitor", "a mesh with free-edge nodes (BoundaryType 2)", "none");
