@@ -1,8 +1,12 @@
-// valve-pipeline run P.json --out DIR [--jobs N] [--stage-dir D ...] [--quiet]
+// valve-pipeline run P.json --out DIR [--jobs N] [--force] [--dry-run] [--stage-dir D ...] [--quiet]
 // valve-pipeline list P.json [--out DIR] [--stage-dir D ...]
 // `run` runs a pipeline JSON (format in libvalve/valve/pipeline/pipeline_spec.hpp): every run
 // in DIR/runs/<run_id>/ with one <step>.log per step, up to N runs at a time, then writes
 // the gather CSVs and gnuplot plots into DIR and DIR/pipeline.summary.json.
+// Steps already done with the same command, stage build and input files are skipped
+// (libvalve/valve/pipeline/step_cache.hpp), so running again resumes after a failure;
+// --force reruns everything. --dry-run prints which steps would run and why, and writes
+// nothing. Each run appends to DIR/pipeline.log and writes DIR/provenance.json.
 // `list` validates the pipeline and prints each run's id and commands without running them.
 // Exit 0 ok, 2 bad pipeline (one line naming file and key, nothing written), 3 some run or
 // plot failed (the summary says which; the tables still hold what the other runs made).
@@ -22,7 +26,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* usage =
-    "usage: valve-pipeline run P.json --out DIR [--jobs N] [--stage-dir D ...] [--quiet]\n"
+    "usage: valve-pipeline run P.json --out DIR [--jobs N] [--force] [--dry-run] [--stage-dir D ...] [--quiet]\n"
     "       valve-pipeline list P.json [--out DIR] [--stage-dir D ...]\n";
 
 int parse_jobs(const CommandLine& cl) {
@@ -75,11 +79,29 @@ int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
   return 0;
 }
 
+// What `run` would do, step by step, without writing anything.
+int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
+  const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
+  const auto runs = expand_runs(spec, options.out_dir);
+  const auto plans = plan_runs(runs, stage_hashes(exes), options.force);
+  size_t to_run = 0, cached = 0;
+  for (size_t r = 0; r < runs.size(); ++r) {
+    std::printf("run %s\n", runs[r].run_id.c_str());
+    for (size_t s = 0; s < runs[r].steps.size(); ++s) {
+      const auto& why = plans[r][s];
+      (why ? to_run : cached) += 1;
+      std::printf("  [%s] %s\n", runs[r].steps[s].name.c_str(), why ? ("run: " + *why).c_str() : "cached");
+    }
+  }
+  std::printf("dry run: %zu step(s) would run, %zu cached\n", to_run, cached);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   return run_stage("valve-pipeline", [&] {
-    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir"}, {"quiet", "help"});
+    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir"}, {"quiet", "help", "force", "dry-run"});
     if (cl.has("help")) {
       std::printf("%s", usage);
       return 0;
@@ -96,17 +118,23 @@ int main(int argc, char** argv) {
     if (pos[0] == "list") return list_runs(spec, cl);
 
     options.quiet = cl.has("quiet");
+    options.force = cl.has("force");
     for (const auto& d : cl.get_all("stage-dir")) options.stage_dirs.push_back(fs::absolute(d));
+    if (cl.has("dry-run")) return dry_run(spec, options);
     const PipelineOutcome result = run_pipeline(spec, options);
 
     if (!options.quiet) {
       size_t ok = 0;
-      for (const auto& r : result.runs) ok += r.ok ? 1 : 0;
+      size_t cached = 0;
+      for (const auto& r : result.runs) {
+        ok += r.ok ? 1 : 0;
+        for (const auto& st : r.steps) cached += st.status == "cached" ? 1 : 0;
+      }
       std::string made;
       for (const auto& t : result.tables)
         made += "; wrote " + t.path.filename().string() + " (" + std::to_string(t.rows) + " rows)";
       for (const auto& p : result.plots) made += "; plot " + p.png + " " + p.status;
-      std::printf("valve-pipeline: %zu/%zu runs ok%s\n", ok, result.runs.size(), made.c_str());
+      std::printf("valve-pipeline: %zu/%zu runs ok, %zu step(s) cached%s\n", ok, result.runs.size(), cached, made.c_str());
     }
     if (result.exit_code != 0) std::fprintf(stderr, "valve-pipeline: failed: %s\n", result.reason.c_str());
     return result.exit_code;

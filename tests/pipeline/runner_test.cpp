@@ -5,6 +5,7 @@
 #include "pipeline_test_support.hpp"
 #include "valve/core/error.hpp"
 #include "valve/pipeline/process.hpp"
+#include <algorithm>
 
 using namespace valve;
 using valve::test::read_text;
@@ -178,4 +179,74 @@ TEST_CASE("process: stage lookup order and shell quoting", "[pipeline]") {
   REQUIRE(dirs.size() >= 2);
   CHECK(dirs[0] == tmp.path());
   CHECK(dirs[1] == self_executable_dir());
+}
+
+TEST_CASE("runner: unchanged steps are cached, changed inputs and failures rerun, --force reruns all", "[pipeline]") {
+  TempDir tmp("cache");
+  const fs::path bin = tmp.path() / "bin", data = tmp.path() / "data.txt", scene = tmp.path() / "scene.txt";
+  // valve-touch NAME SCENE --out D: counts its starts in counts/NAME; SCENE holds the path of
+  // a data file that only the stage's summary names (like a scene naming its mesh); fails
+  // when the data reads "fail".
+  write_script(bin / "valve-touch",
+               "echo x >> \"" + (tmp.path() / "counts").string() + "/$1\"; d=$(cat \"$2\"); "
+               "[ \"$(cat \"$d\")\" = fail ] && exit 4; mkdir -p \"$4\"; "
+               "printf '{\"status\": \"ok\", \"inputs\": [{\"path\": \"%s\"}]}\\n' \"$d\" > \"$4/touch.summary.json\"");
+  fs::create_directories(tmp.path() / "counts");
+  write_text(data, "one");
+  write_text(scene, data.string());
+  const auto spec = write_and_load(tmp.path(), R"({"steps": [
+    {"name": "a", "stage": "valve-touch", "args": ["a", ")" + scene.string() + R"(", "--out", "${run_dir}/a"]},
+    {"name": "b", "stage": "valve-touch", "args": ["b", ")" + scene.string() + R"(", "--out", "${run_dir}/b"]}]})");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {bin};
+  auto starts = [&](const std::string& name) {
+    const std::string text = read_text(tmp.path() / "counts" / name);
+    return static_cast<int>(std::count(text.begin(), text.end(), '\n'));
+  };
+  auto statuses = [](const PipelineOutcome& r) { return r.runs[0].steps[0].status + "," + r.runs[0].steps[1].status; };
+
+  REQUIRE(run_pipeline(spec, options).exit_code == 0);
+  CHECK(starts("a") == 1);
+  CHECK(starts("b") == 1);
+  const auto again = run_pipeline(spec, options);
+  CHECK(again.exit_code == 0);
+  CHECK(statuses(again) == "cached,cached");
+  CHECK(starts("a") == 1);  // nothing ran
+  CHECK(fs::exists(options.out_dir / "runs/single/b/touch.summary.json"));
+
+  // The stamp records the file the summary names; changing it reruns both steps.
+  const ojson prov = ojson::parse(read_text(options.out_dir / "provenance.json"));
+  CHECK(prov["tool"]["version"] == VALVE_TEST_VERSION);
+  CHECK(prov["pipeline"]["sha256"].get<std::string>().size() == 64);
+  bool names_data = false;
+  for (const auto& in : prov["runs"][0]["steps"][0]["inputs"]) names_data |= in["path"] == data.string();
+  CHECK(names_data);
+  write_text(data, "two");
+  CHECK(plan_runs(expand_runs(spec, options.out_dir), {"x", "x"}, false)[0][0].value() == "command or stage changed");
+  const auto changed = run_pipeline(spec, options);
+  CHECK(statuses(changed) == "ok,ok");
+  CHECK(changed.runs[0].steps[0].run_reason == "input " + data.string() + " changed");
+  CHECK(changed.runs[0].steps[1].run_reason == "an earlier step runs");
+  CHECK(starts("a") == 2);
+
+  // A failure leaves no stamp and no stale output; the next invocation resumes there.
+  write_text(data, "fail");
+  const auto failed = run_pipeline(spec, options);
+  CHECK(failed.exit_code == 3);
+  CHECK(statuses(failed) == "failed,skipped");
+  CHECK_FALSE(fs::exists(options.out_dir / "runs/single/a/touch.summary.json"));
+  write_text(data, "two");  // back to what b last saw: a reruns (it failed), b follows it
+  const auto resumed = run_pipeline(spec, options);
+  CHECK(statuses(resumed) == "ok,ok");
+  CHECK(resumed.runs[0].steps[0].run_reason == "never ran");
+
+  options.force = true;
+  CHECK(statuses(run_pipeline(spec, options)) == "ok,ok");
+  CHECK(starts("a") == 5);
+  CHECK(starts("b") == 4);
+  const std::string log = read_text(options.out_dir / "pipeline.log");
+  CHECK_THAT(log, Catch::Contains("run single step a cached"));
+  CHECK_THAT(log, Catch::Contains("step a failed exit 4"));
+  CHECK_THAT(log, Catch::Contains("(forced)"));
 }

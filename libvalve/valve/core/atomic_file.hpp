@@ -21,4 +21,7 @@ std::string read_text_file(const std::filesystem::path& path);
 /// SHA-256 of a file's bytes as lowercase hex; throws InputError if unreadable.
 std::string sha256_file(const std::filesystem::path& path);
 
+/// SHA-256 of a string as lowercase hex.
+std::string sha256_text(const std::string& text);
+
 }  // namespace valve

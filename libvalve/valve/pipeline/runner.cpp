@@ -3,13 +3,18 @@
 #include <sys/types.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <map>
 
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/progress.hpp"
+#include "valve/core/atomic_file.hpp"
 #include "valve/pipeline/process.hpp"
+#include "valve/pipeline/step_cache.hpp"
 
 namespace valve {
 namespace fs = std::filesystem;
@@ -18,6 +23,27 @@ namespace {
 
 bool allowed(const std::vector<int>& codes, int code) {
   return std::find(codes.begin(), codes.end(), code) != codes.end();
+}
+
+std::string timestamp() {
+  const std::time_t t = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", std::localtime(&t));
+  return buf;
+}
+
+// One line per step outcome; a log that cannot be opened is not worth failing a run for.
+void log_step(const fs::path& log, const std::string& run_id, const StepOutcome& so) {
+  if (log.empty()) return;
+  std::ofstream out(log, std::ios::app);
+  if (!out) return;
+  char wall[32];
+  std::snprintf(wall, sizeof wall, "%.3f", so.wall_time_s);
+  out << timestamp() << " run " << run_id << " step " << so.name << " " << so.status;
+  if (so.status != "cached") out << " exit " << so.exit_code << " wall_s " << wall;
+  if (!so.run_reason.empty()) out << " (" << so.run_reason << ")";
+  if (!so.error.empty()) out << " error: " << so.error;
+  out << "\n";
 }
 
 // The state of one run while its steps execute one after another.
@@ -43,8 +69,30 @@ std::vector<fs::path> resolve_stages(const PipelineSpec& spec, const std::vector
   return exes;
 }
 
+std::vector<StepPlan> plan_runs(const std::vector<RunPlan>& runs, const std::vector<std::string>& executable_sha256,
+                                bool force) {
+  std::vector<StepPlan> plans;
+  for (const RunPlan& run : runs) {
+    StepPlan plan;
+    bool running = force;
+    for (size_t i = 0; i < run.steps.size(); ++i) {
+      if (running) {
+        plan.push_back(force ? std::string("forced") : std::string("an earlier step runs"));
+        continue;
+      }
+      plan.push_back(step_rerun_reason(run.run_dir, run.steps[i], step_cache_key(executable_sha256.at(i), run.steps[i])));
+      running = plan.back().has_value();
+    }
+    plans.push_back(plan);
+  }
+  return plans;
+}
+
 std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std::vector<fs::path>& executables,
-                                     int jobs, const RunProgress& progress, bool quiet) {
+                                     const ExecutionOptions& options, const RunProgress& progress) {
+  const int jobs = options.jobs;
+  const bool quiet = options.quiet;
+  const std::vector<StepPlan> plans = plan_runs(runs, options.executable_sha256, options.force);
   std::vector<RunOutcome> out(runs.size());
   for (size_t r = 0; r < runs.size(); ++r) {
     out[r].run_id = runs[r].run_id;
@@ -85,12 +133,21 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
   // cannot start fails the run at once. Returns whether a step is now running.
   auto start_step = [&](ActiveRun a) {
     const RunPlan& run = runs[a.run];
+    while (a.step < run.steps.size() && !plans[a.run][a.step]) {
+      StepOutcome& cached = out[a.run].steps[a.step];
+      cached.status = "cached";
+      cached.exit_code = 0;
+      log_step(options.log, run.run_id, cached);
+      ++a.step;
+    }
     if (a.step >= run.steps.size()) {
       finish_run(a, true, "");
       return false;
     }
     const ResolvedStep& step = run.steps[a.step];
     StepOutcome& so = out[a.run].steps[a.step];
+    so.run_reason = *plans[a.run][a.step];
+    clear_step_outputs(run.run_dir, step);
     a.step_clock = Stopwatch();
     std::string error;
     const pid_t pid = spawn_process(executables.at(a.step), step.args, run.run_dir,
@@ -99,6 +156,7 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
       so.status = "failed";
       so.exit_code = 127;
       so.error = error;
+      log_step(options.log, run.run_id, so);
       finish_run(a, false, "step " + step.name + ": " + error);
       return false;
     }
@@ -112,7 +170,8 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
       a.run = next++;
       const fs::path& dir = runs[a.run].run_dir;
       std::error_code ec;
-      fs::remove_all(dir, ec);
+      // Nothing cached: start from an empty folder, as a first run would.
+      if (!plans[a.run].empty() && plans[a.run][0]) fs::remove_all(dir, ec);
       fs::create_directories(dir, ec);
       if (ec) {
         finish_run(a, false, dir.string() + ": cannot create the run folder: " + ec.message());
@@ -136,10 +195,17 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
     so.cpu_time_s = exit.cpu_time_s;
     if (exit.signal == 0 && allowed(step.allow_exit, exit.code)) {
       so.status = "ok";
+      try {
+        write_step_stamp(runs[a.run].run_dir, step, step_cache_key(options.executable_sha256.at(a.step), step));
+      } catch (const std::exception& e) {  // the step stands; it will run again next time
+        if (!quiet) std::fprintf(stderr, "[valve-pipeline] warning: no cache stamp for %s: %s\n", step.name.c_str(), e.what());
+      }
+      log_step(options.log, runs[a.run].run_id, so);
       ++a.step;
       if (start_step(a)) report(runs[a.run].run_id + " " + step.name + " done");
     } else {
       so.status = "failed";
+      log_step(options.log, runs[a.run].run_id, so);
       const std::string log = (fs::path("runs") / runs[a.run].run_id / (step.name + ".log")).string();
       finish_run(a, false,
                  "step " + step.name + (exit.signal ? " was " + exit.error : " exited with " + std::to_string(exit.code)) +
@@ -148,6 +214,54 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
   }
   return out;
 }
+
+namespace {
+
+std::vector<std::string> executable_hashes(const std::vector<fs::path>& executables) {
+  std::map<fs::path, std::string> known;
+  std::vector<std::string> hashes;
+  for (const auto& e : executables) {
+    if (!known.count(e)) known[e] = sha256_file(e);
+    hashes.push_back(known[e]);
+  }
+  return hashes;
+}
+
+void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs, const std::vector<RunOutcome>& outcomes,
+                      const std::vector<fs::path>& executables, const std::vector<std::string>& hashes,
+                      const fs::path& out) {
+  nlohmann::json p = {{"tool", {{"name", "valve"}, {"version", VALVE_VERSION}}},
+                      {"created", timestamp()},
+                      {"pipeline", {{"file", fs::absolute(spec.file).string()}, {"name", spec.name}}},
+                      {"stages", nlohmann::json::array()},
+                      {"runs", nlohmann::json::array()}};
+  std::error_code ec;
+  if (fs::is_regular_file(spec.file, ec)) p["pipeline"]["sha256"] = sha256_file(spec.file);
+  for (size_t i = 0; i < spec.steps.size(); ++i)
+    p["stages"].push_back({{"step", spec.steps[i].name}, {"stage", spec.steps[i].stage},
+                           {"executable", executables[i].string()}, {"sha256", hashes[i]}});
+  for (size_t r = 0; r < runs.size(); ++r) {
+    nlohmann::json jr = {{"run_id", runs[r].run_id}, {"variables", nlohmann::json(runs[r].variables)},
+                         {"steps", nlohmann::json::array()}};
+    for (size_t s = 0; s < runs[r].steps.size(); ++s) {
+      const ResolvedStep& step = runs[r].steps[s];
+      const StepOutcome& so = outcomes[r].steps[s];
+      nlohmann::json js = {{"name", step.name}, {"stage", step.stage}, {"args", step.args}, {"status", so.status},
+                           {"cache_key", step_cache_key(hashes[s], step)}, {"inputs", nlohmann::json::array()}};
+      if (!so.run_reason.empty()) js["ran_because"] = so.run_reason;
+      if (so.status == "ok" || so.status == "cached")
+        for (const auto& in : read_step_stamp_inputs(runs[r].run_dir, step.name))
+          js["inputs"].push_back({{"path", in.path}, {"sha256", in.sha256}});
+      jr["steps"].push_back(js);
+    }
+    p["runs"].push_back(jr);
+  }
+  write_file_atomic(out / "provenance.json", p.dump(2) + "\n");
+}
+
+}  // namespace
+
+std::vector<std::string> stage_hashes(const std::vector<fs::path>& executables) { return executable_hashes(executables); }
 
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options) {
   // Everything that can reject the pipeline happens before the output folder is created.
@@ -165,10 +279,15 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
 
   PipelineOutcome result;
   Progress progress("valve-pipeline", options.quiet);
+  ExecutionOptions exec;
+  exec.jobs = options.jobs;
+  exec.quiet = options.quiet;
+  exec.force = options.force;
+  exec.executable_sha256 = executable_hashes(exes);
+  exec.log = out / "pipeline.log";
   result.runs = execute_runs(
-      runs, exes, options.jobs,
-      [&](double fraction, const std::string& detail) { progress.update(fraction, detail); },
-      options.quiet);
+      runs, exes, exec, [&](double fraction, const std::string& detail) { progress.update(fraction, detail); });
+  write_provenance(spec, runs, result.runs, exes, exec.executable_sha256, out);
 
   // Aggregates read the tables as just made, in memory: earlier aggregates included.
   std::map<std::string, CsvTable> tables;
@@ -223,6 +342,7 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
                            {"stage", runs[r].steps[s].stage},
                            {"status", so.status},
                            {"exit_code", jr["exit_codes"][so.name]},
+                           {"cached", so.status == "cached"},
                            {"wall_time_s", so.wall_time_s},
                            {"cpu_time_s", so.cpu_time_s},
                            {"log", (runs[r].run_dir / (so.name + ".log")).string()}};

@@ -1,6 +1,5 @@
 #pragma once
-// Runs a validated pipeline: every run in its own folder DIR/runs/<run_id>/ (emptied first,
-// so a gather never picks up a stale summary from an earlier invocation), the steps of a
+// Runs a validated pipeline: every run in its own folder DIR/runs/<run_id>/, the steps of a
 // run in order with the run folder as working directory and their stdout+stderr in
 // <step>.log there, up to `jobs` runs at a time. A step whose exit code is not in its
 // allow_exit (or that cannot start, or is killed by a signal) fails the run and skips the
@@ -9,8 +8,19 @@
 // DIR/pipeline.summary.json (status ok only when every run and every attempted plot
 // succeeded; a plot skipped because gnuplot is absent is not a failure; metrics.csv lists
 // the gather tables, then the aggregate tables, each with its "kind" and row count).
+//
+// Incremental runs (step_cache.hpp): the leading steps of a run that are up to date are not
+// run again ("cached"); from the first step that is not, every step runs. A run with no
+// cached step starts from an emptied folder (so a gather never picks up a stale summary
+// from an earlier invocation); otherwise each step that runs first loses its stamp and its
+// --out folder. Rerunning after a failure thus resumes at the failed step. `force` runs
+// everything from emptied folders. Every invocation appends to DIR/pipeline.log (one line
+// per step: time, run, step, cached / ok / failed, exit code, wall time, why it ran) and
+// writes DIR/provenance.json: tool version, pipeline file hash, each stage executable and
+// its hash, and per step the arguments, cache key and the hashes of the files it read.
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,11 +36,14 @@ struct RunnerOptions {
   bool quiet = true;
   /// Searched for stages before the default directories and PATH (see process.hpp).
   std::vector<std::filesystem::path> stage_dirs;
+  bool force = false;  ///< ignore the step cache: rerun every step from emptied run folders
 };
 
 struct StepOutcome {
   std::string name;
-  std::string status = "skipped";  ///< "ok", "failed" or "skipped" (an earlier step failed)
+  std::string status = "skipped";  ///< "ok", "cached" (up to date, not run), "failed" or
+                                   ///< "skipped" (an earlier step failed)
+  std::string run_reason;          ///< why it ran (step_cache.hpp), empty when cached
   int exit_code = -1;              ///< -1 when it did not run
   double wall_time_s = 0, cpu_time_s = 0;
   std::string error;               ///< could not start, or killed by a signal
@@ -54,11 +67,30 @@ std::vector<std::filesystem::path> resolve_stages(const PipelineSpec& spec,
 /// finished steps of running ones, over all runs) and a one-line description.
 using RunProgress = std::function<void(double fraction, const std::string& detail)>;
 
+/// sha256 of each executable (one hash per distinct file).
+std::vector<std::string> stage_hashes(const std::vector<std::filesystem::path>& executables);
+
+/// Per step of a run: nothing if it is cached, else why it runs.
+using StepPlan = std::vector<std::optional<std::string>>;
+
+/// What an invocation would do: the leading up-to-date steps of each run are cached, the
+/// rest run. `executable_sha256[i]` is the hash of step i's program.
+std::vector<StepPlan> plan_runs(const std::vector<RunPlan>& runs, const std::vector<std::string>& executable_sha256,
+                                bool force);
+
+struct ExecutionOptions {
+  int jobs = 1;
+  bool quiet = true;
+  bool force = false;
+  std::vector<std::string> executable_sha256;  ///< per step, for the cache keys
+  std::filesystem::path log;                    ///< appended run log; empty: none
+};
+
 /// Runs every run, at most `jobs` at a time, each a sequence of child processes. Results
 /// are in run order. `executables[i]` is the program of step i.
 std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs,
-                                     const std::vector<std::filesystem::path>& executables, int jobs,
-                                     const RunProgress& progress = {}, bool quiet = true);
+                                     const std::vector<std::filesystem::path>& executables,
+                                     const ExecutionOptions& options, const RunProgress& progress = {});
 
 struct PipelineOutcome {
   std::vector<RunOutcome> runs;
