@@ -215,9 +215,7 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
   return out;
 }
 
-namespace {
-
-std::vector<std::string> executable_hashes(const std::vector<fs::path>& executables) {
+std::vector<std::string> stage_hashes(const std::vector<fs::path>& executables) {
   std::map<fs::path, std::string> known;
   std::vector<std::string> hashes;
   for (const auto& e : executables) {
@@ -226,6 +224,8 @@ std::vector<std::string> executable_hashes(const std::vector<fs::path>& executab
   }
   return hashes;
 }
+
+namespace {
 
 void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs, const std::vector<RunOutcome>& outcomes,
                       const std::vector<fs::path>& executables, const std::vector<std::string>& hashes,
@@ -261,8 +261,6 @@ void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs
 
 }  // namespace
 
-std::vector<std::string> stage_hashes(const std::vector<fs::path>& executables) { return executable_hashes(executables); }
-
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options) {
   // Everything that can reject the pipeline happens before the output folder is created.
   const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
@@ -283,7 +281,7 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   exec.jobs = options.jobs;
   exec.quiet = options.quiet;
   exec.force = options.force;
-  exec.executable_sha256 = executable_hashes(exes);
+  exec.executable_sha256 = stage_hashes(exes);
   exec.log = out / "pipeline.log";
   result.runs = execute_runs(
       runs, exes, exec, [&](double fraction, const std::string& detail) { progress.update(fraction, detail); });

@@ -40,6 +40,15 @@ std::optional<nlohmann::json> read_json(const fs::path& p) {
   }
 }
 
+std::vector<StepInput> stamp_inputs(const nlohmann::json& stamp) {
+  std::vector<StepInput> inputs;
+  if (!stamp.contains("inputs") || !stamp["inputs"].is_array()) return inputs;
+  for (const auto& in : stamp["inputs"])
+    if (in.contains("path") && in.contains("sha256"))
+      inputs.push_back({in["path"].get<std::string>(), in["sha256"].get<std::string>()});
+  return inputs;
+}
+
 }  // namespace
 
 std::string step_cache_key(const std::string& executable_sha256, const ResolvedStep& step) {
@@ -94,20 +103,15 @@ std::vector<StepInput> write_step_stamp(const fs::path& run_dir, const ResolvedS
 }
 
 std::vector<StepInput> read_step_stamp_inputs(const fs::path& run_dir, const std::string& step) {
-  std::vector<StepInput> inputs;
   const auto j = read_json(step_stamp_path(run_dir, step));
-  if (!j || !j->contains("inputs")) return inputs;
-  for (const auto& in : (*j)["inputs"])
-    if (in.contains("path") && in.contains("sha256"))
-      inputs.push_back({in["path"].get<std::string>(), in["sha256"].get<std::string>()});
-  return inputs;
+  return j ? stamp_inputs(*j) : std::vector<StepInput>{};
 }
 
 std::optional<std::string> step_rerun_reason(const fs::path& run_dir, const ResolvedStep& step, const std::string& key) {
   const auto j = read_json(step_stamp_path(run_dir, step.name));
   if (!j) return std::string("never ran");
   if (!j->contains("key") || (*j)["key"] != key) return std::string("command or stage changed");
-  for (const auto& in : read_step_stamp_inputs(run_dir, step.name)) {
+  for (const auto& in : stamp_inputs(*j)) {
     const auto h = current_hash(in.path);
     if (!h) return "input " + in.path + " is gone";
     if (*h != in.sha256) return "input " + in.path + " changed";
