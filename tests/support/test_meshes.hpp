@@ -66,6 +66,21 @@ inline Eigen::MatrixXd numeric_dfdx(const ForceTerm& term, const VecX& x, const 
   return J;
 }
 
+/// Minus the central-difference gradient of a term's energy at x (the force it should give).
+inline VecX numeric_energy_force(const ForceTerm& term, const VecX& x, const VecX& v, double load, double h) {
+  VecX g(x.size());
+  for (int j = 0; j < x.size(); ++j) {
+    VecX xp = x, xm = x;
+    xp[j] += h;
+    xm[j] -= h;
+    double ep = 0, em = 0;
+    term.energy(State{xp, v, load, 0}, ep);
+    term.energy(State{xm, v, load, 0}, em);
+    g[j] = -(ep - em) / (2 * h);
+  }
+  return g;
+}
+
 inline Eigen::MatrixXd analytic_dfdx(const ForceTerm& term, int num_nodes, const VecX& x, const VecX& v, double load) {
   std::vector<std::pair<int, int>> pairs;
   term.couplings(pairs);

@@ -174,6 +174,14 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     r.record("aortic_root", a.finish());
     sc.aortic_root = ac;
   }
+  if (r.has("bending")) {
+    JsonReader b = r.object("bending");
+    BendingConfig bc;
+    bc.modulus = b.quantity("modulus", Dimension::pressure, std::nullopt, 0.0, 1e6);
+    bc.thickness = b.quantity("thickness", Dimension::length, std::to_string(sc.thickness) + " mm", 1e-6, 100);
+    r.record("bending", b.finish());
+    sc.bending = bc;
+  }
   if (r.has("chordae")) {
     JsonReader c = r.object("chordae");
     ChordaeConfig cc;

@@ -7,6 +7,7 @@
 #include "valve/core/error.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/mechanics/aortic_root.hpp"
+#include "valve/mechanics/bending.hpp"
 #include "valve/mechanics/chordae_rods.hpp"
 #include "valve/mesh/closest_point.hpp"
 #include "valve/mechanics/contact.hpp"
@@ -118,6 +119,7 @@ std::unique_ptr<MechanicalSystem> build_system(const SceneConfig& sc, const TriM
   }
   // Model only what the scene requires: each block below exists only if declared.
   add_material_terms(sc, m, *sys);
+  if (sc.bending) sys->add_term(std::make_unique<BendingTerm>(m, sc.bending->flexural_rigidity()));
   std::vector<const ForceTerm*> external;
   if (sc.pressure) {
     auto term = std::make_unique<PressureTerm>(m, sc.pressure->value, sc.pressure->along_normal);
