@@ -105,6 +105,32 @@ TEST_CASE("BDF2 reports a time limit as not_converged, not as a crash", "[solver
   CHECK(integ.positions().allFinite());
 }
 
+TEST_CASE("BDF2 settle rule: an oscillation within the tolerance settles, a larger one does not", "[solver]") {
+  // Undamped: node 1 oscillates between x = 1 and 1 + 2F/k = 1.5 mm (period 2π sqrt(m/k) =
+  // 1.81 ms) and never meets the per-step rule. Over a 5 ms window it strays 0.5 mm from
+  // where the window began; wherever a window begins, one extreme is at least 0.25 mm away.
+  for (double tolerance : {0.55, 0.2}) {
+    auto sys = two_nodes(2.0, 0.5, 0.0);
+    Bdf2Options o;
+    o.relative_residual_tolerance = 0;
+    o.settle_window = 5.0;
+    o.settle_tolerance = tolerance;
+    o.max_time = 20.0;
+    Bdf2Integrator integ(*sys, o);
+    integ.reset(flatten(MatX3((MatX3(3, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0).finished())));
+    const auto s = integ.run(1.0);
+    INFO("settle tolerance " << tolerance);
+    if (tolerance > 0.5) {
+      CHECK(s.status == SolverStatus::ok);
+      CHECK(s.reason.find("settled") != std::string::npos);
+      CHECK(s.simulated_time_ms == Approx(5.0).margin(0.5));  // the first window
+    } else {
+      CHECK(s.status == SolverStatus::not_converged);
+      CHECK(s.reason.find("max_time") != std::string::npos);
+    }
+  }
+}
+
 TEST_CASE("static Newton solves the spring in one increment", "[solver]") {
   for (auto type : {LinearSolverType::lu, LinearSolverType::cholmod_ldlt, LinearSolverType::cholmod_llt,
                     LinearSolverType::cg, LinearSolverType::bicgstab}) {

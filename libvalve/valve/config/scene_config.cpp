@@ -19,6 +19,8 @@ void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.displacement_tolerance = r.quantity("displacement_tolerance", Dimension::length, std::string("1e-5 mm"), 1e-15, 10);
   o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-3, 0.0, 1.0);
   o.quiet_steps = r.integer("quiet_steps", 3, 1, 1000000);
+  o.settle_window = r.quantity("settle_window", Dimension::time, std::string("0 ms"), 0.0, 1e9);
+  o.settle_tolerance = r.quantity("settle_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
   o.initial_step = r.quantity("initial_step", Dimension::time, std::string("0.001 ms"), 1e-12, 1e6);
   o.min_step = r.quantity("min_step", Dimension::time, std::string("1e-10 ms"), 1e-20, 1e6);
   o.max_step = r.quantity("max_step", Dimension::time, std::string("50 ms"), 1e-12, 1e9);

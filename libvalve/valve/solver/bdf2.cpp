@@ -104,6 +104,8 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
   const long jac0 = jacobians_;
   restart_ = true;  // the load may have changed: the acceleration jumps
   int quiet = 0;
+  VecX settle_anchor = x_;  // positions at the start of the current settle window
+  double settle_start = t_;
   const double t0 = t_;
   long steps = 0;
   History big, half1, half2;
@@ -195,13 +197,21 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
         return finish(SolverStatus::ok, "observer criterion met");
       continue;
     }
+    const auto residual_ok = [&] {
+      return opt_.relative_residual_tolerance <= 0 ||
+             finish(SolverStatus::ok, "").relative_residual <= opt_.relative_residual_tolerance;
+    };
     quiet = sum.last_monitor_displacement_mm < opt_.displacement_tolerance ? quiet + 1 : 0;
-    if (quiet >= opt_.quiet_steps) {
-      if (opt_.relative_residual_tolerance > 0) {
-        SolverSummary probe = finish(SolverStatus::ok, "");
-        if (probe.relative_residual > opt_.relative_residual_tolerance) continue;
-      }
+    if (quiet >= opt_.quiet_steps && residual_ok())
       return finish(SolverStatus::ok, "monitor displacement per step below tolerance");
+    if (opt_.settle_window > 0) {
+      const bool strayed = max_node_distance(x_, settle_anchor, true) > opt_.settle_tolerance;
+      if (!strayed && t_ - settle_start >= opt_.settle_window && residual_ok())
+        return finish(SolverStatus::ok, "monitor nodes settled within settle_tolerance over settle_window");
+      if (strayed || t_ - settle_start >= opt_.settle_window) {  // a new window (the residual is probed once per window)
+        settle_anchor = x_;
+        settle_start = t_;
+      }
     }
   }
 }
