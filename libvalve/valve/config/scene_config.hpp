@@ -68,15 +68,15 @@ struct AorticRootConfig {
   double pressure = 0;                    // MPa distending the root (default: the scene pressure)
   std::string preset, source;
 };
-/// Chordae tendineae (seed 5.2.2): a chordae.json whose insertions are snapped to the
-/// scene's mesh, as tension-only rods; papillary tips fixed (optionally moved to the
-/// closed-state positions given in network order).
 /// Bending stiffness (mechanics/bending.hpp): flexural rigidity D = E_b t³ / 12.
 struct BendingConfig {
   double modulus = 0;    // MPa, E_b
   double thickness = 0;  // mm (default: the scene's thickness)
   double flexural_rigidity() const { return modulus * thickness * thickness * thickness / 12; }  // N·mm
 };
+/// Chordae tendineae (seed 5.2.2): a chordae.json whose insertions are snapped to the
+/// scene's mesh, as tension-only rods; papillary tips fixed (optionally moved to the
+/// closed-state positions given in network order).
 struct ChordaeConfig {
   std::filesystem::path file;
   double youngs_modulus = 40.0;  // MPa (Table 5.1)
