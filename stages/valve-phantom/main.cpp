@@ -4,6 +4,8 @@
 //               [--format nrrd|mha|nii|dicom] [--quiet]
 // valve-phantom ttv --inp MODEL.inp [--frame FRAME.vtu] --out DIR [same imaging options;
 //               --thickness 0.65 --chord-diameter 0.65 by default]
+// valve-phantom surface --mesh MEMBRANE.vtp [--lines CHORDAE.vtp] --out DIR [same imaging
+//               options] (e.g. a simulated closed valve: the synthetic closed scan)
 // A digital phantom with known ground truth: the parametric open mitral valve of
 // libvalve/imaging/mitral_phantom.hpp, or a finite element valve model from an Abaqus deck
 // (Texas TriValve: S4R leaflet shells split into triangles, T3D2 chordae; --frame takes the
@@ -77,6 +79,22 @@ PhantomGeometry mitral_geometry(StageArguments& args, double spacing, std::uint6
   return g;
 }
 
+// The atrial direction of a valve mesh: the normal of the annulus nodes' best-fit plane,
+// pointing away from the leaflets (which hang into the ventricle); +z without an annulus.
+Vec3 atrial_direction(const TriMesh& leaflets) {
+  std::vector<int> ring_nodes;
+  for (int i = 0; i < leaflets.num_nodes(); ++i)
+    if (leaflets.boundary[i] == BoundaryType::attached || leaflets.roles[i] == NodeRole::fixed) ring_nodes.push_back(i);
+  if (ring_nodes.size() < 3) return Vec3::UnitZ();
+  MatX3 ring(ring_nodes.size(), 3);
+  for (size_t k = 0; k < ring_nodes.size(); ++k) ring.row(k) = leaflets.points.row(ring_nodes[k]);
+  const Vec3 centre = ring.colwise().mean().transpose();
+  const MatX3 d = ring.rowwise() - centre.transpose();
+  Vec3 atrial = Eigen::SelfAdjointEigenSolver<Mat3>(d.transpose() * d).eigenvectors().col(0);
+  if ((leaflets.points.colwise().mean().transpose() - centre).dot(atrial) > 0) atrial = -atrial;
+  return atrial;
+}
+
 PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
   const std::string inp = args.text("inp", "");
   if (inp.empty()) throw InputError("valve-phantom ttv: --inp: expected the Abaqus model (.inp), found nothing");
@@ -98,19 +116,7 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
     for (const auto& [a, b] : lines) g.chord_segments.emplace_back(model.points.row(a).transpose(), model.points.row(b).transpose());
   int annulus = 0, free_edge = 0;
   for (BoundaryType b : g.leaflets.boundary) annulus += b == BoundaryType::attached, free_edge += b == BoundaryType::free_edge;
-  // The atrial direction: the normal of the annulus nodes' best-fit plane, pointing away from
-  // the leaflets (which hang into the ventricle).
-  Vec3 atrial = Vec3::UnitZ();
-  if (annulus >= 3) {
-    MatX3 ring(annulus, 3);
-    int k = 0;
-    for (int i = 0; i < g.leaflets.num_nodes(); ++i)
-      if (g.leaflets.boundary[i] == BoundaryType::attached) ring.row(k++) = g.leaflets.points.row(i);
-    const Vec3 centre = ring.colwise().mean().transpose();
-    const MatX3 d = ring.rowwise() - centre.transpose();
-    atrial = Eigen::SelfAdjointEigenSolver<Mat3>(d.transpose() * d).eigenvectors().col(0);
-    if ((g.leaflets.points.colwise().mean().transpose() - centre).dot(atrial) > 0) atrial = -atrial;
-  }
+  const Vec3 atrial = atrial_direction(g.leaflets);
   g.description = {{"model", inp},
                    {"atrial_direction", {atrial.x(), atrial.y(), atrial.z()}},
                    {"frame", frame.empty() ? std::string("(the .inp coordinates)") : frame},
@@ -120,12 +126,31 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
                    {"chordae", {{"segments", chordae ? int(lines.size()) : 0}}}};
   return g;
 }
+
+// Any membrane mesh (e.g. a simulated closed valve, closed.sim.vtp) voxelized as a sheet of
+// --thickness, with an optional line set (closed.chordae.vtp) as tubes of --chord-diameter.
+PhantomGeometry surface_geometry(StageArguments& args) {
+  const std::string mesh = args.text("mesh", "");
+  if (mesh.empty()) throw InputError("valve-phantom surface: --mesh: expected a membrane mesh (.vtp), found nothing");
+  PhantomGeometry g;
+  g.leaflets = read_mesh(mesh);
+  g.thickness = args.length_mm("thickness", 1, 0.05, 10);
+  g.chord_diameter = args.length_mm("chord-diameter", 0.5, 0.05, 5);
+  const std::string lines = args.text("lines", "");
+  if (!lines.empty()) g.chord_segments = read_line_segments(lines);
+  const Vec3 atrial = atrial_direction(g.leaflets);
+  g.description = {{"mesh", mesh},
+                   {"atrial_direction", {atrial.x(), atrial.y(), atrial.z()}},
+                   {"leaflet_nodes", g.leaflets.num_nodes()},
+                   {"chordae", {{"segments", int(g.chord_segments.size())}}}};
+  return g;
+}
 }  // namespace
 
 int main(int argc, char** argv) {
   return run_stage("valve-phantom", [&] {
     const std::vector<std::string> keys = {"name", "spacing", "seed", "variation", "thickness", "chord_diameter", "blur",
-                                           "noise", "tissue", "background", "margin", "format", "inp", "frame"};
+                                           "noise", "tissue", "background", "margin", "format", "inp", "frame", "mesh", "lines"};
     std::vector<std::string> flags;
     for (std::string k : keys) {
       std::replace(k.begin(), k.end(), '_', '-');
@@ -135,8 +160,8 @@ int main(int argc, char** argv) {
     flags.push_back("config");
     CommandLine cl(argc, argv, flags, {"no-chordae", "quiet"});
     const std::string kind = cl.positional().size() == 1 ? cl.positional()[0] : "";
-    if (kind != "mitral" && kind != "ttv")
-      throw InputError("valve-phantom: KIND: expected mitral or ttv, found " +
+    if (kind != "mitral" && kind != "ttv" && kind != "surface")
+      throw InputError("valve-phantom: KIND: expected mitral, ttv or surface, found " +
                        (cl.positional().empty() ? std::string("nothing") : "\"" + cl.positional()[0] + "\""));
     StageArguments args(cl, keys);
     const fs::path out = cl.require("out");
@@ -153,7 +178,9 @@ int main(int argc, char** argv) {
     Progress progress("valve-phantom", cl.has("quiet"));
 
     std::optional<ChordaeNetwork> network;
-    const PhantomGeometry ph = kind == "mitral" ? mitral_geometry(args, spacing, seed, chordae, &network) : model_geometry(args, chordae);
+    const PhantomGeometry ph = kind == "mitral" ? mitral_geometry(args, spacing, seed, chordae, &network)
+                               : kind == "ttv"  ? model_geometry(args, chordae)
+                                                : surface_geometry(args);
     Vec3 lo = ph.leaflets.points.colwise().minCoeff().transpose(), hi = ph.leaflets.points.colwise().maxCoeff().transpose();
     for (const auto& [a, b] : ph.chord_segments) lo = lo.cwiseMin(a).cwiseMin(b), hi = hi.cwiseMax(a).cwiseMax(b);
     for (const auto& pm : ph.papillary) {
@@ -191,6 +218,10 @@ int main(int argc, char** argv) {
     if (kind == "ttv") {
       summary.add_input("model", args.text("inp", ""));
       if (!args.text("frame", "").empty()) summary.add_input("frame", args.text("frame", ""));
+    }
+    if (kind == "surface") {
+      summary.add_input("mesh", args.text("mesh", ""));
+      if (!args.text("lines", "").empty()) summary.add_input("lines", args.text("lines", ""));
     }
     summary.parameters() = args.used();
     summary.parameters()["kind"] = kind;

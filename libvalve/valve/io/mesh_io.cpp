@@ -158,6 +158,27 @@ MatX3 read_point_positions(const fs::path& path) {
   return x;
 }
 
+std::vector<std::pair<Vec3, Vec3>> read_line_segments(const fs::path& path) {
+  const std::string file = path.string();
+  vtkSmartPointer<vtkPolyData> pd = read_polydata(path);
+  if (pd->GetNumberOfLines() == 0) throw_input_error(file, "lines", "line cells", "none");
+  std::vector<std::pair<Vec3, Vec3>> segments;
+  auto point = [&](vtkIdType i) {
+    double p[3];
+    pd->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+      throw_input_error(file, "point " + std::to_string(i), "finite coordinates", "NaN or infinity");
+    return Vec3(p[0], p[1], p[2]);
+  };
+  vtkCellArray* lines = pd->GetLines();
+  lines->InitTraversal();
+  vtkIdType n;
+  const vtkIdType* ids;
+  while (lines->GetNextCell(n, ids))
+    for (vtkIdType k = 0; k + 1 < n; ++k) segments.emplace_back(point(ids[k]), point(ids[k + 1]));
+  return segments;
+}
+
 TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
   const std::string file = path.string();
   vtkSmartPointer<vtkPolyData> pd = read_polydata(path);

@@ -35,6 +35,10 @@ void write_mesh(const std::filesystem::path& path, const TriMesh& mesh, const Ma
 void write_lines(const std::filesystem::path& path, const MatX3& points, const std::vector<std::pair<int, int>>& lines,
                  const std::vector<NamedArray>& arrays = {});
 
+/// The segments of every polyline of a .vtp line set (e.g. closed.chordae.vtp), as end-point
+/// pairs. Throws InputError naming the file when it has no line cells.
+std::vector<std::pair<Vec3, Vec3>> read_line_segments(const std::filesystem::path& path);
+
 /// The point coordinates of any VTK XML data set (.vtu, .vtp), in file order: a frame of a
 /// model whose points follow its node numbering (Texas TriValve: point i = node i + 1).
 MatX3 read_point_positions(const std::filesystem::path& path);
