@@ -15,11 +15,13 @@
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/validate.hpp"
 #include "valve/scene/benchmark.hpp"
+#include "valve/solver/linear_solver.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  limit_blas_threads_unless_set();
   return run_stage("valve-bench", [&] {
     CommandLine cl(argc, argv, {"scene", "out", "mesh", "repetitions", "set"}, {"quiet"});
     const fs::path scene_file = cl.require("scene");

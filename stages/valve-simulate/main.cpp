@@ -23,6 +23,7 @@
 #include "valve/core/error.hpp"
 #include "valve/core/progress.hpp"
 #include "valve/io/mesh_io.hpp"
+#include "valve/solver/linear_solver.hpp"
 #include "valve/mechanics/kinematics.hpp"
 #include "valve/mechanics/membrane_fe.hpp"
 #include "valve/mesh/validate.hpp"
@@ -33,6 +34,7 @@ using namespace valve;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
+  limit_blas_threads_unless_set();
   return run_stage("valve-simulate", [&] {
     CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set"}, {"time-series", "quiet"});
     const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");

@@ -5,7 +5,10 @@
 #include <Eigen/KLUSupport>
 #include <Eigen/UmfPackSupport>
 #include <Eigen/SparseLU>
+#include <dlfcn.h>
+
 #include <algorithm>
+#include <cstdlib>
 #include <chrono>
 #include <vector>
 
@@ -118,6 +121,14 @@ class IterativeSolver final : public LinearSolver {
 };
 
 }  // namespace
+
+void limit_blas_threads_unless_set() {
+  if (std::getenv("OPENBLAS_NUM_THREADS")) return;
+  // Looked up at run time: Debian's BLAS is chosen by alternatives (OpenBLAS, reference
+  // BLAS, BLIS), and only OpenBLAS has this entry point; elsewhere this does nothing.
+  using SetThreads = void (*)(int);
+  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+}
 
 LinearSolverType parse_linear_solver(const std::string& name) {
   if (name == "auto") return LinearSolverType::automatic;
