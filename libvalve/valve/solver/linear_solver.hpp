@@ -46,14 +46,14 @@ class LinearSolver {
   LinearSolverStats stats_;
 };
 
-/// `tolerance` and `max_iterations` apply to the iterative solvers only; `dofs` resolves
-/// LinearSolverType::automatic.
 /// Keeps OpenBLAS (behind CHOLMOD supernodal and UMFPACK) to one thread unless the user set
 /// OPENBLAS_NUM_THREADS. Why: our systems are small (10^3-10^4 unknowns) and factorized
 /// thousands of times; on the 2-core machine an unpinned mitral contact closure spent 21 s
 /// of a 90 s run in the kernel (threads spinning and waking). Call it first thing in a stage.
 void limit_blas_threads_unless_set();
 
+/// `tolerance` and `max_iterations` apply to the iterative solvers only; `dofs` resolves
+/// LinearSolverType::automatic.
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tolerance = 1e-10,
                                                  int max_iterations = 2000, int dofs = 0);
 
