@@ -1,6 +1,7 @@
 // Whole scenes on generated meshes: the biaxial protocol against the Fung law (an
 // independent inversion of Eq. 3.1-3.3), and agreement of the static and dynamic solvers.
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/config/scene_config.hpp"
@@ -150,10 +151,25 @@ int nearest_node(const TriMesh& m, const Vec3& p, int first, int count) {
 }
 }  // namespace
 
-TEST_CASE("two sheets pressed together stop at the contact separation, symmetrically", "[scene][contact]") {
+// Height of a sheet's surface (triangles [first, last)) over (px, py) at positions x; NaN
+// where the sheet does not cover the point.
+double surface_height(const TriMesh& m, const VecX& x, size_t first, size_t last, double px, double py) {
+  for (size_t t = first; t < last; ++t) {
+    const Tri& tr = m.triangles[t];
+    const Vec3 a = node3(x, tr[0]), b = node3(x, tr[1]), c = node3(x, tr[2]);
+    const double det = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+    const double u = ((px - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (py - a.y())) / det;
+    const double v = ((b.x() - a.x()) * (py - a.y()) - (px - a.x()) * (b.y() - a.y())) / det;
+    if (u >= 0 && v >= 0 && u + v <= 1) return a.z() + u * (b.z() - a.z()) + v * (c.z() - a.z());
+  }
+  return std::nan("");
+}
+
+TEST_CASE("two sheets pressed together come to rest at the contact separation without crossing", "[scene][contact]") {
   const TriMesh mesh = facing_sheets();
   const int n = mesh.num_nodes() / 2;
-  const int ca = nearest_node(mesh, Vec3(0, 0, 0), 0, n), cb = nearest_node(mesh, Vec3(0, 0, 2), n, n);
+  const size_t half = mesh.triangles.size() / 2;
+  const int ca = nearest_node(mesh, Vec3(0, 0, 0), 0, n);
   json j = {{"mesh", "unused.vtp"},
             {"model", "membrane_fe"},
             {"material", "aortic_leaflet"},
@@ -168,24 +184,32 @@ TEST_CASE("two sheets pressed together stop at the contact separation, symmetric
     REQUIRE(res.summary.status == SolverStatus::ok);
     CHECK(node3(res.x, ca).z() > 1.3);
   }
-  // With contact BDF2 does not settle to the seed's 1e-5 mm per step (known gap, README):
-  // judge the state after 40 ms of simulated time, long after the sheets have met.
+  // With contact the run comes to rest by the seed's rule (1e-5 mm per step, residual
+  // below 1e-3): a static equilibrium.
   j["contact"] = json::object();  // penalty: δ = 0.25 mm, k = 1 N/mm
-  j["solver"]["bdf2"]["max_time"] = "40 ms";
   const SceneConfig sc = parse_scene(j, "contact.json", ".");
   auto sys = build_system(sc, mesh);
   const auto res = simulate(sc, mesh, *sys);
-  INFO(res.summary.reason << ", " << res.summary.steps << " steps, residual " << res.summary.relative_residual
-                          << ", last monitor step " << res.summary.last_monitor_displacement_mm << " mm");
-  REQUIRE(res.summary.reason == "max_time reached");
-  CHECK(res.summary.relative_residual < 0.05);
-  const double za = node3(res.x, ca).z(), zb = node3(res.x, cb).z();
-  // The pressure on a node (~0.0107 MPa × ~0.4 mm²) compresses the 0.25 mm separation by
-  // √(0.005 N · δ / k) ≈ 0.035 mm; allow for the node not lying exactly over the other's face.
-  CHECK(zb - za > 0.15);
-  CHECK(zb - za < 0.25);
-  // Mirror symmetry of mesh and load: the sheets meet near the mid-plane (not settled yet).
-  CHECK(za + zb == Approx(2.0).margin(0.05));
-  // Nothing crossed: every node of A stays below its mirror node of B.
-  for (int i = 0; i < n; ++i) CHECK(node3(res.x, i).z() < node3(res.x, i + n).z());
+  INFO(res.summary.reason << ", " << res.summary.steps << " steps, residual " << res.summary.relative_residual);
+  REQUIRE(res.summary.status == SolverStatus::ok);
+  CHECK(res.summary.relative_residual < 1e-3);
+  // Across the contact patch the surfaces rest a little inside δ: the pressure on a node
+  // (~0.0107 MPa × ~0.4 mm²) compresses the separation by √(0.005 N · δ / k) ≈ 0.035 mm
+  // with one acting pair, less where a node meets several triangles (near their edges).
+  for (double px : {-3.0, -1.5, 0.0, 1.5, 3.0}) {
+    const double za = surface_height(mesh, res.x, 0, half, px, 0.3);
+    const double zb = surface_height(mesh, res.x, half, 2 * half, px, 0.3);
+    INFO("x = " << px << ": A at z = " << za << ", B at z = " << zb);
+    CHECK(zb - za > 0.15);
+    CHECK(zb - za < 0.25);
+  }
+  // Nothing crossed: B's surface lies above every node of A. Where the pair settles is not
+  // pinned by the mirror symmetry: the contact is frictionless, so the two sheets can shift
+  // together (measured 0.1-0.3 mm off the mid-plane, for δ of 0.1, 0.25 and 0.5 mm alike),
+  // and the 120-triangle mesh is not symmetric in x or y.
+  for (int i = 0; i < n; ++i) {
+    const Vec3 p = node3(res.x, i);
+    const double zb = surface_height(mesh, res.x, half, 2 * half, p.x(), p.y());
+    if (!std::isnan(zb)) CHECK(zb > p.z());
+  }
 }

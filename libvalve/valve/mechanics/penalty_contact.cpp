@@ -132,66 +132,27 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
   out.clear();
   const double delta = opt_.separation;
   const auto& tris = topology_.triangles();
-  struct Near {
-    int triangle, leaflet;
-    Vec3 w;
-    Vec3 q;
-    double d;
-  };
-  std::vector<Near> near;
-  for (size_t a = 0; a < face_pairs_.size();) {
-    const int i = face_pairs_[a].first;
-    size_t b = a;
-    while (b < face_pairs_.size() && face_pairs_[b].first == i) ++b;
-    const Vec3 p = node3(x, i);
-    near.clear();
-    for (size_t k = a; k < b; ++k) {
-      const int t = face_pairs_[k].second;
-      const Tri& tri = tris[t];
-      const Vec3 xa = node3(x, tri[0]), xb = node3(x, tri[1]), xc = node3(x, tri[2]);
-      const Vec3 w = closest_point_weights(p, xa, xb, xc);
-      const Vec3 q = w[0] * xa + w[1] * xb + w[2] * xc;
-      near.push_back({t, topology_.leaflet_of(t), w, q, (p - q).norm()});
-    }
-    // Per leaflet: the nearest triangle, and triangles touched on their face that share no
-    // vertex with it (another layer of a fold).
-    std::sort(near.begin(), near.end(), [](const Near& u, const Near& v) {
-      return u.leaflet != v.leaflet ? u.leaflet < v.leaflet : u.d < v.d;
-    });
-    for (size_t k = 0; k < near.size(); ++k) {
-      const Near& c = near[k];
-      if (c.d >= delta) continue;
-      const bool nearest = k == 0 || near[k - 1].leaflet != c.leaflet;
-      if (!nearest) {
-        if (c.w.minCoeff() <= 1e-9) continue;
-        size_t first = k;
-        while (first > 0 && near[first - 1].leaflet == c.leaflet) --first;
-        if (share_vertex(tris[near[first].triangle], tris[c.triangle])) continue;
-      }
-      Contact ct;
-      const Tri& tri = tris[c.triangle];
-      ct.nodes[0] = i, ct.weights[0] = 1;
-      for (int j = 0; j < 3; ++j) ct.nodes[j + 1] = tri[j], ct.weights[j + 1] = -c.w[j];
-      ct.distance = c.d;
-      if (c.d > 1e-12) {
-        ct.normal = (p - c.q) / c.d;
-      } else {  // on the surface: push along the face normal
-        const Vec3 xa = node3(x, tri[0]);
-        ct.normal = (node3(x, tri[1]) - xa).cross(node3(x, tri[2]) - xa).normalized();
-      }
-      if (ct.normal.allFinite()) out.push_back(ct);
-    }
-    a = b;
+  for (const auto& [i, t] : face_pairs_) {
+    const Tri& tri = tris[t];
+    const Vec3 p = node3(x, i), xa = node3(x, tri[0]), xb = node3(x, tri[1]), xc = node3(x, tri[2]);
+    const Vec3 w = closest_point_weights(p, xa, xb, xc);
+    const Vec3 q = w[0] * xa + w[1] * xb + w[2] * xc;
+    const double d = (p - q).norm();
+    if (d >= delta) continue;
+    Contact ct;
+    ct.nodes[0] = i, ct.weights[0] = 1;
+    for (int j = 0; j < 3; ++j) ct.nodes[j + 1] = tri[j], ct.weights[j + 1] = -w[j];
+    ct.distance = d;
+    // On the surface the direction is the face normal.
+    ct.normal = d > 1e-12 ? Vec3((p - q) / d) : Vec3((xb - xa).cross(xc - xa).normalized());
+    if (ct.normal.allFinite()) out.push_back(ct);
   }
   const auto& edges = topology_.edges();
-  const double inner = 1e-9;
   for (const auto& [be, e] : edge_pairs_) {
     const auto [a, b] = edges[be];
     const auto [c, d] = edges[e];
     const Vec3 xa = node3(x, a), xb = node3(x, b), xc = node3(x, c), xd = node3(x, d);
     const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
-    // Closest points at an end are node–triangle contacts already.
-    if (s <= inner || s >= 1 - inner || u <= inner || u >= 1 - inner) continue;
     const Vec3 diff = (xa + s * (xb - xa)) - (xc + u * (xd - xc));
     const double dist = diff.norm();
     if (dist >= delta) continue;
