@@ -132,7 +132,7 @@ TEST_CASE("BDF2 settle rule: an oscillation within the tolerance settles, a larg
 }
 
 TEST_CASE("static Newton solves the spring in one increment", "[solver]") {
-  for (auto type : {LinearSolverType::lu, LinearSolverType::cholmod_ldlt, LinearSolverType::cholmod_llt,
+  for (auto type : {LinearSolverType::lu, LinearSolverType::cholmod_ldlt, LinearSolverType::cholmod_llt, LinearSolverType::ldlt,
                     LinearSolverType::cg, LinearSolverType::bicgstab}) {
     auto sys = two_nodes(4.0, 1.0, 0.0);
     VecX x = flatten(MatX3((MatX3(3, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0).finished()));

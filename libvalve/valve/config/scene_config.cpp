@@ -30,7 +30,7 @@ void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
   o.adaptive = r.boolean("adaptive", true);
   o.linear_solver = parse_linear_solver(
-      r.choice("linear_solver", {"auto", "cholmod_llt", "cholmod_ldlt", "umfpack", "klu", "cg", "bicgstab", "lu"}, std::string("cholmod_ldlt")));
+      r.choice("linear_solver", linear_solver_names(), std::string("auto")));
   o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
   o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
 }
@@ -47,7 +47,7 @@ void parse_static(JsonReader& r, StaticOptions& o) {
   o.max_increments = r.integer("max_increments", 2000, 1, 100000000);
   o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
   o.linear_solver = parse_linear_solver(
-      r.choice("linear_solver", {"auto", "cholmod_llt", "cholmod_ldlt", "umfpack", "klu", "cg", "bicgstab", "lu"}, std::string("auto")));
+      r.choice("linear_solver", linear_solver_names(), std::string("auto")));
   o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
   o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
 }

@@ -1,6 +1,7 @@
 #include "valve/mechanics/jacobian.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 
 #include "valve/core/error.hpp"
@@ -9,6 +10,8 @@ namespace valve {
 
 BlockJacobian::BlockJacobian(int num_nodes, const std::vector<std::pair<int, int>>& couplings)
     : n_(num_nodes), m_(3 * num_nodes, 3 * num_nodes), column_nodes_(num_nodes) {
+  static std::atomic<long> patterns{0};
+  revision_ = ++patterns;
   for (int i = 0; i < n_; ++i) column_nodes_[i].push_back(i);
   for (const auto& [a, b] : couplings) {
     if (a == b) continue;

@@ -28,10 +28,14 @@ class BlockJacobian {
   int num_nodes() const { return n_; }
   /// The 3x3 diagonal block of node i.
   Mat3 diagonal_block(int i) const;
+  /// Identifies the sparsity pattern: a new value for every constructed pattern, so a
+  /// consumer that caches index maps over matrix() can tell when to rebuild them.
+  long pattern_revision() const { return revision_; }
 
  private:
   int position(int i, int j) const;  // index of node i within node column j's list
   int n_ = 0;
+  long revision_ = 0;
   SparseMatrix m_;
   std::vector<std::vector<int>> column_nodes_;  // sorted node rows per node column
 };

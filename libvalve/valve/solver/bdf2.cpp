@@ -11,7 +11,8 @@ namespace valve {
 
 Bdf2Integrator::Bdf2Integrator(MechanicalSystem& system, Bdf2Options options)
     : sys_(system), opt_(std::move(options)) {
-  solver_ = make_linear_solver(opt_.linear_solver, opt_.iterative_tolerance, opt_.iterative_max_iterations, sys_.num_dofs());
+  solver_ = make_linear_solver(opt_.linear_solver, opt_.iterative_tolerance, opt_.iterative_max_iterations,
+                               sys_.num_dofs(), SystemSymmetry::symmetrized);
   monitor_ = opt_.monitor_nodes;
   if (monitor_.empty())
     for (int i = 0; i < sys_.num_nodes(); ++i)
@@ -47,28 +48,23 @@ bool Bdf2Integrator::step(const History& in, double h, double load, History& out
   sys_.update_critical_damping(s, f_);
   const VecX& M = sys_.dof_masses();
   const VecX delta = in.x - in.x_prev;
-  SparseMatrix A;
+  const bool velocity_terms = sys_.has_velocity_terms();
+  const SparseMatrix* Dv = velocity_terms ? &sys_.dfdv().matrix() : nullptr;
+  double c_x, c_v;
   VecX b;
   if (in.euler) {
-    A = (-h * h) * sys_.dfdx().matrix();
+    c_x = -h * h;
+    c_v = -h;
     b = h * M.cwiseProduct(in.v) + (h * h) * f_;
-    if (sys_.has_velocity_terms()) {
-      const SparseMatrix& Dv = sys_.dfdv().matrix();
-      A = A - h * Dv;
-      b -= (h * h) * (Dv * in.v);
-    }
+    if (Dv) b -= (h * h) * (*Dv * in.v);
   } else {
-    A = (-4.0 / 9.0 * h * h) * sys_.dfdx().matrix();
+    c_x = -4.0 / 9.0 * h * h;
+    c_v = -2.0 / 3.0 * h;
     b = M.cwiseProduct(delta / 3.0 + (h / 9.0) * (8.0 * in.v - 2.0 * in.v_prev)) + (4.0 / 9.0 * h * h) * f_;
-    if (sys_.has_velocity_terms()) {
-      const SparseMatrix& Dv = sys_.dfdv().matrix();
-      A = A - (2.0 / 3.0 * h) * Dv;
-      b -= (4.0 / 9.0 * h * h) * (Dv * in.v) + (2.0 / 9.0 * h) * (Dv * delta);
-    }
+    if (Dv) b -= (4.0 / 9.0 * h * h) * (*Dv * in.v) + (2.0 / 9.0 * h) * (*Dv * delta);
   }
-  for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += M[i];
-  apply_constraints(A, b, sys_.constrained());
-  if (solver_->needs_symmetric()) A = symmetric_part(A);
+  const SparseMatrix& A = system_matrix_.assemble(sys_.dfdx(), c_x, velocity_terms ? &sys_.dfdv() : nullptr, c_v, M,
+                                                  sys_.constrained(), solver_->needs_symmetric(), b);
   VecX dx;
   if (!solver_->factorize(A) || !solver_->solve(b, dx)) return false;
   out.x_prev = in.x;

@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "valve/mechanics/mechanical_system.hpp"
+#include "valve/solver/constrained_system.hpp"
 #include "valve/solver/linear_solver.hpp"
 #include "valve/solver/solver_summary.hpp"
 
@@ -46,7 +47,7 @@ struct Bdf2Options {
   double max_time = 1e6;                 // ms of simulated time
   double max_wall_seconds = 600;
   bool adaptive = true;                  // false: fixed step = initial_step, no doubling
-  LinearSolverType linear_solver = LinearSolverType::cholmod_ldlt;
+  LinearSolverType linear_solver = LinearSolverType::automatic;  // see kLargeSystemDofs
   double iterative_tolerance = 1e-10;
   int iterative_max_iterations = 5000;
   std::vector<int> monitor_nodes;        // empty: every free node
@@ -91,6 +92,7 @@ class Bdf2Integrator {
   MechanicalSystem& sys_;
   Bdf2Options opt_;
   std::unique_ptr<LinearSolver> solver_;
+  SystemMatrix system_matrix_;
   VecX x_, v_, x_prev_, v_prev_, f_;
   double t_ = 0, h_ = 0, h_hist_ = 0;  // h_hist_: spacing between x_prev_ and x_
   std::vector<int> monitor_;

@@ -4,6 +4,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/KLUSupport>
 #include <Eigen/UmfPackSupport>
+#include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <dlfcn.h>
 
@@ -130,16 +131,28 @@ void limit_blas_threads_unless_set() {
   if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
 }
 
+namespace {
+const LinearSolverType kAllTypes[] = {LinearSolverType::automatic, LinearSolverType::cholmod_llt,
+                                      LinearSolverType::cholmod_ldlt, LinearSolverType::ldlt,
+                                      LinearSolverType::umfpack, LinearSolverType::klu,
+                                      LinearSolverType::cg, LinearSolverType::bicgstab, LinearSolverType::lu};
+}  // namespace
+
+const std::vector<std::string>& linear_solver_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> v;
+    for (auto t : kAllTypes) v.push_back(to_string(t));
+    return v;
+  }();
+  return names;
+}
+
 LinearSolverType parse_linear_solver(const std::string& name) {
-  if (name == "auto") return LinearSolverType::automatic;
-  if (name == "cholmod_llt") return LinearSolverType::cholmod_llt;
-  if (name == "cholmod_ldlt") return LinearSolverType::cholmod_ldlt;
-  if (name == "umfpack") return LinearSolverType::umfpack;
-  if (name == "klu") return LinearSolverType::klu;
-  if (name == "cg") return LinearSolverType::cg;
-  if (name == "bicgstab") return LinearSolverType::bicgstab;
-  if (name == "lu") return LinearSolverType::lu;
-  throw InputError("linear solver: expected auto|cholmod_llt|cholmod_ldlt|umfpack|klu|cg|bicgstab|lu, found \"" + name + "\"");
+  for (auto t : kAllTypes)
+    if (to_string(t) == name) return t;
+  std::string expected;
+  for (const auto& n : linear_solver_names()) expected += (expected.empty() ? "" : "|") + n;
+  throw InputError("linear solver: expected " + expected + ", found \"" + name + "\"");
 }
 
 std::string to_string(LinearSolverType t) {
@@ -147,6 +160,7 @@ std::string to_string(LinearSolverType t) {
     case LinearSolverType::automatic: return "auto";
     case LinearSolverType::cholmod_llt: return "cholmod_llt";
     case LinearSolverType::cholmod_ldlt: return "cholmod_ldlt";
+    case LinearSolverType::ldlt: return "ldlt";
     case LinearSolverType::umfpack: return "umfpack";
     case LinearSolverType::klu: return "klu";
     case LinearSolverType::cg: return "cg";
@@ -156,14 +170,20 @@ std::string to_string(LinearSolverType t) {
   return "?";
 }
 
-std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tol, int max_it, int dofs) {
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tol, int max_it, int dofs,
+                                                 SystemSymmetry symmetry) {
+  const bool large = dofs > kLargeSystemDofs;
   switch (type) {
     case LinearSolverType::automatic:
-      return make_linear_solver(dofs > kLargeSystemDofs ? LinearSolverType::umfpack : LinearSolverType::klu, tol, max_it);
+      if (symmetry == SystemSymmetry::symmetrized)
+        return make_linear_solver(large ? LinearSolverType::cholmod_llt : LinearSolverType::ldlt, tol, max_it);
+      return make_linear_solver(large ? LinearSolverType::umfpack : LinearSolverType::klu, tol, max_it);
     case LinearSolverType::cholmod_llt:
       return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_llt", true);
     case LinearSolverType::cholmod_ldlt:
       return std::make_unique<DirectSolver<Eigen::CholmodSimplicialLDLT<SparseMatrix>>>("cholmod_ldlt", true);
+    case LinearSolverType::ldlt:
+      return std::make_unique<DirectSolver<Eigen::SimplicialLDLT<SparseMatrix>>>("ldlt", true);
     case LinearSolverType::lu:
       return std::make_unique<DirectSolver<Eigen::SparseLU<SparseMatrix>>>("lu", false);
     case LinearSolverType::umfpack:

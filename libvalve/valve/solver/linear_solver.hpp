@@ -1,21 +1,30 @@
 #pragma once
 // Linear solvers behind one interface: CHOLMOD supernodal Cholesky and simplicial LDLᵀ,
-// UMFPACK and KLU sparse LU (SuiteSparse), preconditioned conjugate gradients, BiCGStab and
-// sparse LU (Eigen).
+// UMFPACK and KLU sparse LU (SuiteSparse), simplicial LDLᵀ, preconditioned conjugate
+// gradients, BiCGStab and sparse LU (Eigen).
 // The symbolic analysis is done once per pattern; factorize() is called per matrix.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "valve/mechanics/jacobian.hpp"
 
 namespace valve {
 
-enum class LinearSolverType { automatic, cholmod_llt, cholmod_ldlt, umfpack, klu, cg, bicgstab, lu };
+enum class LinearSolverType { automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu };
 
-/// For non-symmetric systems, "automatic" picks KLU below `kLargeSystemDofs` unknowns (least
-/// overhead on a few hundred unknowns) and UMFPACK above (multifrontal with BLAS: 4x faster
-/// than KLU at 30,000 unknowns, tests/solver and valve-bench). Measured in this repository:
-/// one factorization of a 20,000-triangle leaflet takes 0.72 s (KLU), 0.18 s (UMFPACK).
+/// The names parse_linear_solver() accepts, as scene files spell them.
+const std::vector<std::string>& linear_solver_names();
+
+/// "automatic" by size. For the symmetrized systems of BDF2, Eigen's simplicial LDLᵀ below
+/// `kLargeSystemDofs` unknowns and CHOLMOD supernodal Cholesky above: on the sample mitral
+/// contact system (1,140 unknowns, 90k entries in L) one factorization takes 3.3 ms (Eigen
+/// LDLᵀ), 6.2 ms (CHOLMOD simplicial LDLᵀ, which converts and copies on every call) and
+/// 6.6 ms (CHOLMOD supernodal); on a 10,113-triangle mitral membrane a BDF2 step took 0.9 s
+/// with CHOLMOD supernodal against 1.5 s with CHOLMOD simplicial. For non-symmetric systems
+/// (static Newton), KLU below `kLargeSystemDofs` (least overhead on a few hundred unknowns)
+/// and UMFPACK above (multifrontal with BLAS: 4x faster than KLU at 30,000 unknowns; one
+/// factorization of a 20,000-triangle leaflet takes 0.72 s with KLU, 0.18 s with UMFPACK).
 constexpr int kLargeSystemDofs = 6000;
 
 LinearSolverType parse_linear_solver(const std::string& name);  // throws InputError
@@ -52,9 +61,12 @@ class LinearSolver {
 /// of a 90 s run in the kernel (threads spinning and waking). Call it first thing in a stage.
 void limit_blas_threads_unless_set();
 
-/// `tolerance` and `max_iterations` apply to the iterative solvers only; `dofs` resolves
-/// LinearSolverType::automatic.
+enum class SystemSymmetry { general, symmetrized };
+
+/// `tolerance` and `max_iterations` apply to the iterative solvers only; `dofs` and
+/// `symmetry` resolve LinearSolverType::automatic.
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double tolerance = 1e-10,
-                                                 int max_iterations = 2000, int dofs = 0);
+                                                 int max_iterations = 2000, int dofs = 0,
+                                                 SystemSymmetry symmetry = SystemSymmetry::general);
 
 }  // namespace valve
