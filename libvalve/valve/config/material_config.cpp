@@ -84,8 +84,37 @@ fs::path config_directory() {
   return VALVE_SOURCE_CONFIG_DIR;
 }
 
+namespace {
+
+// The preset file a string names: "<name>.json" under configs/materials, or a .json path.
+fs::path material_file(const std::string& s, const std::string& file, const std::string& where, const fs::path& base_dir) {
+  if (s.size() > 5 && s.substr(s.size() - 5) == ".json") return fs::path(s).is_absolute() ? fs::path(s) : base_dir / s;
+  const fs::path path = config_directory() / "materials" / (s + ".json");
+  if (!fs::exists(path))
+    throw_input_error(file, where, "a known material preset (see " + (config_directory() / "materials").string() + ")",
+                      "\"" + s + "\"");
+  return path;
+}
+
+}  // namespace
+
 MaterialConfig load_material(const json& value, const std::string& file, const std::string& where,
                              const fs::path& base_dir, json* used) {
+  if (value.is_object() && value.contains("base")) {
+    if (!value["base"].is_string())
+      throw_input_error(file, where + ".base", "a material preset name or a .json path", describe_json(value["base"]));
+    const fs::path path = material_file(value["base"].get<std::string>(), file, where + ".base", base_dir);
+    json merged = load_json_file(path);
+    json patch = value;
+    patch.erase("base");
+    merged.merge_patch(patch);
+    JsonReader r(merged, file, where);
+    MaterialConfig m = parse_material(r);
+    json u = r.finish();
+    u["base"] = path.string();
+    if (used) *used = u;
+    return m;
+  }
   if (value.is_object()) {
     JsonReader r(value, file, where);
     MaterialConfig m = parse_material(r);
@@ -94,16 +123,7 @@ MaterialConfig load_material(const json& value, const std::string& file, const s
   }
   if (!value.is_string())
     throw_input_error(file, where, "a material object, a preset name or a .json path", describe_json(value));
-  const std::string s = value.get<std::string>();
-  fs::path path;
-  if (s.size() > 5 && s.substr(s.size() - 5) == ".json") {
-    path = fs::path(s).is_absolute() ? fs::path(s) : base_dir / s;
-  } else {
-    path = config_directory() / "materials" / (s + ".json");
-    if (!fs::exists(path))
-      throw_input_error(file, where, "a known material preset (see " + (config_directory() / "materials").string() + ")",
-                        "\"" + s + "\"");
-  }
+  const fs::path path = material_file(value.get<std::string>(), file, where, base_dir);
   const json j = load_json_file(path);
   JsonReader r(j, path.string());
   MaterialConfig m = parse_material(r);

@@ -35,6 +35,9 @@ std::filesystem::path config_directory();
 
 /// Loads a material from a value that is an object, a preset name or a .json path
 /// (relative paths are taken from `base_dir`). `where` names the key for messages.
+/// An object with "base" (a preset name or .json path) starts from that material and
+/// overrides it key by key (JSON merge patch), so a study can vary one parameter of a
+/// preset: {"base": "mitral_leaflet_table51", "bilinear": {"fiber": {"m1": "0.0116 MPa"}}}.
 MaterialConfig load_material(const json& value, const std::string& file, const std::string& where,
                              const std::filesystem::path& base_dir, json* used);
 
