@@ -72,12 +72,13 @@ int main(int argc, char** argv) {
     }
     // Rest lengths are fixed now, from the open geometry, so that later edits of the
     // positions (closed-state papillary tips) do not change them.
-    for (std::size_t s = 0; s < net.segments.size(); ++s) net.segments[s].rest_length = net.rest_length(static_cast<int>(s));
+    for (std::size_t s = 0; s < net.segments.size(); ++s)
+      net.segments[s].rest_length = net.unscaled_rest_length(static_cast<int>(s));
 
     double total = 0, longest = 0;
     for (std::size_t s = 0; s < net.segments.size(); ++s) {
-      total += net.segments[s].rest_length;
-      longest = std::max(longest, net.segments[s].rest_length);
+      total += net.rest_length(static_cast<int>(s));
+      longest = std::max(longest, net.rest_length(static_cast<int>(s)));
     }
     fs::create_directories(out);
     write_file_atomic(out / (name + ".json"), to_json(net).dump(1) + "\n");

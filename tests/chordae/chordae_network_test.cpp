@@ -61,3 +61,20 @@ TEST_CASE("chordae.json checks", "[chordae]") {
   doc["segments"][0]["type"] = "tertiary";
   CHECK_THROWS_WITH(read_chordae_json(doc, "c.json"), Catch::Contains("segments[0].type"));
 }
+
+TEST_CASE("a scale multiplies an explicit rest length too", "[chordae]") {
+  // valve-chordae writes every segment's length at scale 1; a later scale (a repair, the
+  // scene's chordae.rest_length_scale) must still shorten the chord.
+  nlohmann::json doc = small_tree();
+  doc["segments"][0]["rest_length_mm"] = 10.0;
+  doc["segments"][0]["scale"] = 0.9;
+  const ChordaeNetwork net = read_chordae_json(doc, "c.json");
+  CHECK(net.unscaled_rest_length(0) == Approx(10.0));
+  CHECK(net.rest_length(0) == Approx(9.0));
+  const ChordaeNetwork again = read_chordae_json(to_json(net), "c.json");
+  CHECK(again.rest_length(0) == Approx(9.0));
+  // Without an explicit length: the distance between the ends, times the scale.
+  const ChordaeNetwork plain = read_chordae_json(small_tree(), "c.json");
+  const double open = (plain.points[plain.segments[0].from].position - plain.points[plain.segments[0].to].position).norm();
+  CHECK(plain.rest_length(0) == Approx(open));
+}

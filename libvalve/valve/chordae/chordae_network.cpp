@@ -17,11 +17,13 @@ int ChordaeNetwork::count(ChordPointKind kind) const {
   return static_cast<int>(std::count_if(points.begin(), points.end(), [&](const ChordPoint& p) { return p.kind == kind; }));
 }
 
-double ChordaeNetwork::rest_length(int s) const {
+double ChordaeNetwork::unscaled_rest_length(int s) const {
   const ChordSegment& seg = segments[s];
   if (seg.rest_length > 0) return seg.rest_length;
-  return seg.scale * (points[seg.from].position - points[seg.to].position).norm();
+  return (points[seg.from].position - points[seg.to].position).norm();
 }
+
+double ChordaeNetwork::rest_length(int s) const { return segments[s].scale * unscaled_rest_length(s); }
 
 const char* to_string(ChordPointKind kind) {
   switch (kind) {

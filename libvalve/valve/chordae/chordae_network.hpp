@@ -10,7 +10,10 @@
 //                "mesh_node": i (insertions; -1 if not snapped yet), "name": "..."}, ...],
 //    "segments": [{"from": i, "to": j, "type": "primary"|"secondary"|"strut",
 //                  "scale": 1.0 (rest length factor, < 1 shortens a chord as a repair does),
-//                  "rest_length_mm": L0 (optional; default: the open-geometry length × scale)}, ...]}
+//                  "rest_length_mm": L0 (optional: the length at scale 1; default: the
+//                                    open-geometry length)}, ...]}
+// The rest length is scale × L0, so a scale applied later (a repair, the scene's
+// chordae.rest_length_scale) acts on files that carry their rest lengths.
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -33,7 +36,7 @@ struct ChordSegment {
   int from = 0, to = 0;
   ChordType type = ChordType::primary;
   double scale = 1.0;        // rest length factor (chord shortening)
-  double rest_length = 0.0;  // mm; 0 = not set (the open-geometry length × scale)
+  double rest_length = 0.0;  // mm at scale 1; 0 = not set (the open-geometry length)
 };
 
 struct ChordaeNetwork {
@@ -43,7 +46,9 @@ struct ChordaeNetwork {
 
   int count(ChordType type) const;
   int count(ChordPointKind kind) const;
-  /// Rest length of segment s: its explicit rest_length, else |from − to| × scale.
+  /// Length of segment s at scale 1: its explicit rest_length, else |from − to|.
+  double unscaled_rest_length(int s) const;
+  /// Rest length of segment s: scale × unscaled_rest_length(s).
   double rest_length(int s) const;
 };
 
