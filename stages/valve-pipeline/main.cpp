@@ -1,11 +1,12 @@
-// valve-pipeline run P.json --out DIR [--jobs N] [--force] [--dry-run] [--stage-dir D ...] [--quiet]
+// valve-pipeline run P.json --out DIR [--jobs N] [--run ID ...] [--force] [--dry-run] [--stage-dir D ...] [--quiet]
 // valve-pipeline list P.json [--out DIR] [--stage-dir D ...]
 // `run` runs a pipeline JSON (format in libvalve/valve/pipeline/pipeline_spec.hpp): every run
 // in DIR/runs/<run_id>/ with one <step>.log per step, up to N runs at a time, then writes
 // the gather CSVs and gnuplot plots into DIR and DIR/pipeline.summary.json.
 // Steps already done with the same command, stage build and input files are skipped
 // (libvalve/valve/pipeline/step_cache.hpp), so running again resumes after a failure;
-// --force reruns everything. --dry-run prints which steps would run and why, and writes
+// --run ID (repeatable) runs only those runs (ids as `list` prints them), and the tables
+// and plots then hold only them. --force reruns everything. --dry-run prints which steps would run and why, and writes
 // nothing. Each run appends to DIR/pipeline.log and writes DIR/provenance.json.
 // `list` validates the pipeline and prints each run's id and commands without running them.
 // Exit 0 ok, 2 bad pipeline (one line naming file and key, nothing written), 3 some run or
@@ -26,7 +27,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const char* usage =
-    "usage: valve-pipeline run P.json --out DIR [--jobs N] [--force] [--dry-run] [--stage-dir D ...] [--quiet]\n"
+    "usage: valve-pipeline run P.json --out DIR [--jobs N] [--run ID ...] [--force] [--dry-run] [--stage-dir D ...] [--quiet]\n"
     "       valve-pipeline list P.json [--out DIR] [--stage-dir D ...]\n";
 
 int parse_jobs(const CommandLine& cl) {
@@ -82,7 +83,7 @@ int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
 // What `run` would do, step by step, without writing anything.
 int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
   const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
-  const auto runs = expand_runs(spec, options.out_dir);
+  const auto runs = select_runs(expand_runs(spec, options.out_dir), options.only_runs, "--run");
   const auto plans = plan_runs(runs, stage_hashes(exes), options.force);
   size_t to_run = 0, cached = 0;
   for (size_t r = 0; r < runs.size(); ++r) {
@@ -101,7 +102,7 @@ int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
 
 int main(int argc, char** argv) {
   return run_stage("valve-pipeline", [&] {
-    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir"}, {"quiet", "help", "force", "dry-run"});
+    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir", "run"}, {"quiet", "help", "force", "dry-run"});
     if (cl.has("help")) {
       std::printf("%s", usage);
       return 0;
@@ -119,6 +120,7 @@ int main(int argc, char** argv) {
 
     options.quiet = cl.has("quiet");
     options.force = cl.has("force");
+    options.only_runs = cl.get_all("run");
     for (const auto& d : cl.get_all("stage-dir")) options.stage_dirs.push_back(fs::absolute(d));
     if (cl.has("dry-run")) return dry_run(spec, options);
     const PipelineOutcome result = run_pipeline(spec, options);

@@ -672,6 +672,18 @@ std::vector<RunPlan> expand_runs(const PipelineSpec& spec, const fs::path& out_d
   return runs;
 }
 
+std::vector<RunPlan> select_runs(std::vector<RunPlan> runs, const std::vector<std::string>& ids,
+                                 const std::string& option) {
+  if (ids.empty()) return runs;
+  for (const auto& id : ids)
+    if (std::none_of(runs.begin(), runs.end(), [&](const RunPlan& r) { return r.run_id == id; }))
+      throw InputError(option + ": expected a run id of the pipeline (valve-pipeline list shows them), found \"" + id + "\"");
+  runs.erase(std::remove_if(runs.begin(), runs.end(),
+                            [&](const RunPlan& r) { return std::find(ids.begin(), ids.end(), r.run_id) == ids.end(); }),
+             runs.end());
+  return runs;
+}
+
 std::string substitute(const std::string& text, const Bindings& bindings, const std::string& file,
                        const std::string& key) {
   std::string out;

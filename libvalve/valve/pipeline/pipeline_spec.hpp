@@ -215,6 +215,11 @@ std::vector<std::string> make_run_ids(const std::vector<ojson>& assignments);
 /// The runs of the pipeline with their folders under out_dir/runs and substituted steps.
 std::vector<RunPlan> expand_runs(const PipelineSpec& spec, const std::filesystem::path& out_dir);
 
+/// The runs whose ids are listed, in pipeline order; all of them when `ids` is empty. An id
+/// that is not a run of the pipeline is an InputError naming `option`.
+std::vector<RunPlan> select_runs(std::vector<RunPlan> runs, const std::vector<std::string>& ids,
+                                 const std::string& option);
+
 /// The placeholders of one run: its variables plus run_dir, run_id, out_dir, pipeline_dir.
 Bindings run_bindings(const PipelineSpec& spec, const RunPlan& run, const std::filesystem::path& out_dir);
 

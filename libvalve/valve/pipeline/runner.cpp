@@ -264,7 +264,7 @@ void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options) {
   // Everything that can reject the pipeline happens before the output folder is created.
   const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
-  const std::vector<RunPlan> runs = expand_runs(spec, options.out_dir);
+  const std::vector<RunPlan> runs = select_runs(expand_runs(spec, options.out_dir), options.only_runs, "--run");
   const fs::path out = normalized_dir(options.out_dir);
 
   std::error_code ec;

@@ -37,6 +37,7 @@ struct RunnerOptions {
   /// Searched for stages before the default directories and PATH (see process.hpp).
   std::vector<std::filesystem::path> stage_dirs;
   bool force = false;  ///< ignore the step cache: rerun every step from emptied run folders
+  std::vector<std::string> only_runs;  ///< run ids to run (the tables hold only them); empty: all
 };
 
 struct StepOutcome {
