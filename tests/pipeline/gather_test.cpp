@@ -95,6 +95,39 @@ TEST_CASE("gather: one row per run, or per element of rows, gaps stay visible", 
   CHECK(missing.size() == 2);
 }
 
+TEST_CASE("gather: file: columns join another JSON file of the same run", "[pipeline]") {
+  TempDir tmp("gather_file");
+  const auto spec = parse_pipeline(ojson::parse(R"({
+    "variables": {"model": ["fe", "ms"]},
+    "steps": [{"stage": "valve-simulate", "args": []}],
+    "gather": [
+      {"csv": "pareto.csv", "summary": "compare/c.json",
+       "columns": {"model": "${model}", "error_mm": "summary:mean_mm",
+                   "wall_s": "file:sim_${model}/s.json:metrics.wall_s"}}
+    ]})"),
+                                     "P.json", tmp.path());
+  const fs::path out = tmp.path() / "out";
+  const auto runs = expand_runs(spec, out);
+  write_text(runs[0].run_dir / "compare/c.json", R"({"mean_mm": 0.8})");
+  write_text(runs[0].run_dir / "sim_fe/s.json", R"({"metrics": {"wall_s": 11.5}})");
+  write_text(runs[1].run_dir / "compare/c.json", R"({"mean_mm": 0.9})");  // no sim_ms/s.json
+  std::vector<MissingSummary> missing;
+  const CsvTable t = gather_table(spec, spec.gather[0], runs, out, &missing);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0] == std::vector<std::string>{"fe", "0.8", "11.5"});
+  CHECK(t.rows[1] == std::vector<std::string>{"ms", "0.9", ""});
+  REQUIRE(missing.size() == 1);
+  CHECK(missing[0].reason.find("sim_ms/s.json") != std::string::npos);
+
+  // The file part is checked like any placeholder text, and must not be empty.
+  CHECK_THROWS_WITH(parse_pipeline(ojson::parse(R"({"steps": [{"stage": "valve-x", "args": []}],
+    "gather": [{"csv": "a.csv", "summary": "s.json", "columns": {"t": "file::metrics.t"}}]})"), "P.json", tmp.path()),
+                    Catch::Contains("gather[0].columns.t") && Catch::Contains("file:<json file in the run folder>:<path>"));
+  CHECK_THROWS_WITH(parse_pipeline(ojson::parse(R"({"steps": [{"stage": "valve-x", "args": []}],
+    "gather": [{"csv": "a.csv", "summary": "s.json", "columns": {"t": "file:${nope}/s.json:t"}}]})"), "P.json", tmp.path()),
+                    Catch::Contains("nope"));
+}
+
 TEST_CASE("plots: script with terminal, separator and output, skipped without gnuplot", "[pipeline]") {
   TempDir tmp("plot");
   auto spec_with = [&](const std::string& gnuplot) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <regex>
@@ -58,6 +59,26 @@ std::string cell_text(const ojson* v) {
   return v->dump();
 }
 
+namespace {
+
+// A run's JSON file, or null (reported in `missing`) when it is absent or not JSON: the
+// cells that read it are then empty.
+ojson read_run_json(const std::string& run_id, const fs::path& file, std::vector<MissingSummary>* missing) {
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec)) {
+    if (missing) missing->push_back({run_id, file.string() + ": no such file"});
+    return nullptr;
+  }
+  try {
+    return ojson::parse(read_text_file(file));
+  } catch (const std::exception&) {
+    if (missing) missing->push_back({run_id, file.string() + ": not valid JSON"});
+    return nullptr;
+  }
+}
+
+}  // namespace
+
 CsvTable gather_table(const PipelineSpec& spec, const GatherSpec& gather, const std::vector<RunPlan>& runs,
                       const fs::path& out_dir, std::vector<MissingSummary>* missing) {
   CsvTable table;
@@ -65,18 +86,14 @@ CsvTable gather_table(const PipelineSpec& spec, const GatherSpec& gather, const 
   for (const auto& run : runs) {
     const Bindings b = run_bindings(spec, run, out_dir);
     const fs::path file = run.run_dir / substitute(gather.summary, b, spec.file, gather.key + ".summary");
-    ojson summary;  // null when missing: every summary: cell is then empty
-    std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) {
-      if (missing) missing->push_back({run.run_id, file.string() + ": no such file"});
-    } else {
-      try {
-        summary = ojson::parse(read_text_file(file));
-      } catch (const std::exception& e) {
-        if (missing) missing->push_back({run.run_id, file.string() + ": not valid JSON"});
-        summary = nullptr;
-      }
-    }
+    const ojson summary = read_run_json(run.run_id, file, missing);
+    std::map<std::string, ojson> other_files;  // file: columns, read once per run
+    auto file_value = [&](const ColumnSpec& c) -> const ojson* {
+      const std::string name = substitute(c.file, b, spec.file, gather.key + ".columns." + c.header);
+      auto it = other_files.find(name);
+      if (it == other_files.end()) it = other_files.emplace(name, read_run_json(run.run_id, run.run_dir / name, missing)).first;
+      return find_path(it->second, c.text);
+    };
     std::vector<const ojson*> elements{nullptr};
     if (!gather.rows.empty()) {
       const ojson* rows = find_path(summary, gather.rows);
@@ -97,6 +114,9 @@ CsvTable gather_table(const PipelineSpec& spec, const GatherSpec& gather, const 
             break;
           case ColumnSpec::Source::row:
             row.push_back(cell_text(element ? find_path(*element, c.text) : nullptr));
+            break;
+          case ColumnSpec::Source::file:
+            row.push_back(cell_text(file_value(c)));
             break;
         }
       }

@@ -282,12 +282,21 @@ GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariabl
   for (auto it = cols.begin(); it != cols.end(); ++it) {
     const std::string key = ckey + "." + it.key();
     if (!it.value().is_string())
-      fail(file, key, "a string: text with ${...}, \"summary:<path>\" or \"row:<path>\"", describe(it.value()));
+      fail(file, key, "a string: text with ${...}, \"summary:<path>\", \"row:<path>\" or \"file:<file>:<path>\"",
+           describe(it.value()));
     const std::string text = it.value().get<std::string>();
     ColumnSpec col{it.key(), ColumnSpec::Source::literal, text};
     if (text.rfind("summary:", 0) == 0) {
       col.source = ColumnSpec::Source::summary;
       col.text = text.substr(8);
+    } else if (text.rfind("file:", 0) == 0) {
+      const size_t colon = text.find(':', 5);
+      if (colon == std::string::npos || colon == 5 || colon + 1 == text.size())
+        fail(file, key, "\"file:<json file in the run folder>:<path>\"", "\"" + text + "\"");
+      col.source = ColumnSpec::Source::file;
+      col.file = text.substr(5, colon - 5);
+      col.text = text.substr(colon + 1);
+      check_placeholders(col.file, run_builtins, variables, file, key);
     } else if (text.rfind("row:", 0) == 0) {
       if (spec.rows.empty()) fail(file, key, "a \"rows\" path in " + spec.key + " for a row: column", "\"" + text + "\"");
       col.source = ColumnSpec::Source::row;

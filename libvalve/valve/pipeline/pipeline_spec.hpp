@@ -30,7 +30,9 @@
 //      "rows": "metrics.biaxial.components",     // optional: an array in it, one row per element
 //      "columns": {"angle": "${angle}",          // ordered; a string with placeholders,
 //                  "error": "row:error_pct",     // "row:<path>" inside the current element,
-//                  "status": "summary:status"}}  // "summary:<path>" inside the summary
+//                  "status": "summary:status",   // "summary:<path>" inside the summary,
+//                  "time": "file:sim/simulate.summary.json:metrics.solver.wall_seconds"}}
+//                                                // "file:<json file in the run folder>:<path>"
 //   ],
 //   "aggregate": [                       // optional: grouped statistics of the tables, computed
 //     {"csv": "biaxial_summary.csv",     // after the gather step, in this order; unique, not a
@@ -115,10 +117,11 @@ struct StepSpec {
 
 /// One CSV column: a literal (with placeholders), or a path into the summary or the row.
 struct ColumnSpec {
-  enum class Source { literal, summary, row };
+  enum class Source { literal, summary, row, file };
   std::string header;
   Source source = Source::literal;
-  std::string text;  ///< the literal, or the dot path after "summary:" / "row:"
+  std::string text;  ///< the literal, or the dot path after "summary:" / "row:" / "file:<file>:"
+  std::string file;  ///< Source::file: the JSON file, relative to the run folder
 };
 
 struct GatherSpec {
