@@ -1,5 +1,5 @@
 // valve-compare SIMULATED.vtp REFERENCE.vtp --out DIR [--correspondence nodes|nearest]
-//               [--register none|annulus|all] [--quiet]
+//               [--register none|annulus|all] [--sections N] [--quiet]
 // How far a simulated valve is from a reference (a closed-valve scan's membrane, or a mesh
 // with the same numbering).
 //   --correspondence nodes (default when both meshes have the same node count and no
@@ -9,14 +9,20 @@
 //     surface (Error_mm).
 //   --register annulus (default for nearest): rigid ICP of the simulated annulus ring onto
 //     the reference's (seed); all: ICP of all nodes; none: as they are.
+//   --sections N: both meshes cut by N planes across the commissure-to-commissure axis of the
+//     reference's annulus (analysis/sections.hpp; seed Fig. 5.9), the segments listed in
+//     the summary under metrics.sections.segments (plane, mesh, u0, v0, u1, v1 in mm; v
+//     points from the leaflets to the annulus) for plotting.
 // Writes DIR/error.vtp (SIMULATED, registered, with Error_mm and for nearest NodeError_mm)
 // and DIR/compare.summary.json (mean, max, RMS, 95th percentile; registration).
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include "valve/analysis/annulus_targets.hpp"
 #include "valve/analysis/distance_stats.hpp"
 #include "valve/analysis/rigid_registration.hpp"
+#include "valve/analysis/sections.hpp"
 #include "valve/analysis/surface_distance.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
@@ -44,7 +50,7 @@ Eigen::MatrixXd column(const std::vector<double>& d) {
 
 int main(int argc, char** argv) {
   return run_stage("valve-compare", [&] {
-    CommandLine cl(argc, argv, {"out", "correspondence", "register"}, {"quiet"});
+    CommandLine cl(argc, argv, {"out", "correspondence", "register", "sections"}, {"quiet"});
     if (cl.positional().size() != 2)
       throw InputError("valve-compare: expected SIMULATED.vtp REFERENCE.vtp, found " + std::to_string(cl.positional().size()) +
                        " file arguments");
@@ -59,6 +65,14 @@ int main(int argc, char** argv) {
     const std::string reg = cl.get("register").value_or(mode == "nearest" ? "annulus" : "none");
     if (reg != "none" && reg != "annulus" && reg != "all")
       throw InputError("valve-compare: --register: expected none, annulus or all, found \"" + reg + "\"");
+    int sections = 0;
+    if (const auto v = cl.get("sections")) {
+      char* end = nullptr;
+      const long n = std::strtol(v->c_str(), &end, 10);
+      if (end == v->c_str() || *end != '\0' || n < 1 || n > 50)
+        throw InputError("valve-compare: --sections: expected an integer in [1, 50], found \"" + *v + "\"");
+      sections = static_cast<int>(n);
+    }
     if (mode == "nodes" && !same_numbering)
       throw_input_error(ref_file.string(), "points", std::to_string(sim.num_nodes()) + " nodes (--correspondence nodes)",
                         std::to_string(ref.num_nodes()));
@@ -109,6 +123,25 @@ int main(int argc, char** argv) {
       summary.metrics()["nearest_node_distance"] = node_stats.to_json();
       arrays.push_back({"Error_mm", column(surf_d), false});
       arrays.push_back({"NodeError_mm", column(node_d), false});
+    }
+    if (sections > 0) {
+      const std::vector<int> ring = annulus_ring(ref);
+      if (ring.size() < 3)
+        throw_input_error(ref_file.string(), "NodeRole", "an annulus (boundary loop with fixed or attached nodes) for --sections",
+                          std::to_string(ring.size()) + " such nodes");
+      const MatX3 ring_points = rows(ref.points, ring);
+      const Vec3 up = ring_points.colwise().mean().transpose() - ref.points.colwise().mean().transpose();
+      const SectionFrame frame = section_frame(ring_points, sections, up);
+      nlohmann::json j = to_json(frame);
+      j["segments"] = nlohmann::json::array();
+      auto add = [&](const char* name, const TriMesh& mesh, const MatX3& pts) {
+        for (const SectionSegment& g : cut_sections(mesh, pts, frame))
+          j["segments"].push_back({{"plane", g.plane}, {"offset_mm", frame.offsets[g.plane]}, {"mesh", name},
+                                   {"u0", g.u0}, {"v0", g.v0}, {"u1", g.u1}, {"v1", g.v1}});
+      };
+      add("simulated", sim, moved);
+      add("reference", ref, ref.points);
+      summary.metrics()["sections"] = j;
     }
     write_mesh(out / "error.vtp", sim, &moved, arrays);
     summary.write();
