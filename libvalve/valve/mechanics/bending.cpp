@@ -47,6 +47,11 @@ BendingTerm::BendingTerm(const TriMesh& mesh, double flexural_rigidity) {
     h.stiffness = flexural_rigidity * le2 / areas;
     hinges_.push_back(h);
   }
+  std::vector<std::pair<int, int>> pairs;
+  for (const Hinge& h : hinges_)
+    for (int i = 0; i < 4; ++i)
+      for (int j = 0; j < 4; ++j) pairs.emplace_back(h.nodes[i], h.nodes[j]);
+  slots_ = BlockSlotCache(std::move(pairs));
 }
 
 void BendingTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
@@ -56,12 +61,14 @@ void BendingTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
 }
 
 void BendingTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
-  for (const Hinge& h : hinges_) {
+  const std::vector<BlockSlot>* slots = dfdx ? &slots_.slots(*dfdx) : nullptr;
+  for (std::size_t k = 0; k < hinges_.size(); ++k) {
+    const Hinge& h = hinges_[k];
     const Vec3 v = hinge_vector(s.x, h);
     for (int i = 0; i < 4; ++i) node3(f, h.nodes[i]) -= h.stiffness * h.weights[i] * v;
     if (!dfdx) continue;
     for (int i = 0; i < 4; ++i)
-      for (int j = 0; j < 4; ++j) dfdx->add(h.nodes[i], h.nodes[j], -h.stiffness * h.weights[i] * h.weights[j] * Mat3::Identity());
+      for (int j = 0; j < 4; ++j) dfdx->add_identity((*slots)[16 * k + 4 * i + j], -h.stiffness * h.weights[i] * h.weights[j]);
   }
 }
 

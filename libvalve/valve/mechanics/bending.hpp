@@ -58,6 +58,7 @@ class BendingTerm final : public ForceTerm {
 
  private:
   std::vector<Hinge> hinges_;
+  mutable BlockSlotCache slots_;  // 16 per hinge: (nodes[i], nodes[j]), i major
 };
 
 }  // namespace valve

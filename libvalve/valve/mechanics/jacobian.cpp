@@ -60,6 +60,11 @@ void BlockJacobian::add(int i, int j, const Mat3& B) {
   }
 }
 
+BlockSlot BlockJacobian::slot(int i, int j) const {
+  const int* outer = m_.outerIndexPtr();
+  return {outer[3 * j] + 3 * position(i, j), outer[3 * j + 1] - outer[3 * j]};
+}
+
 void BlockJacobian::add_diagonal(int i, double s) {
   const int p = position(i, i);
   double* v = m_.valuePtr();

@@ -25,6 +25,7 @@ class PressureTerm final : public ForceTerm {
  private:
   std::vector<Tri> triangles_;
   double signed_pressure_;
+  mutable BlockSlotCache slots_;  // 9 per triangle: (t[a], t[b]), a major
 };
 
 }  // namespace valve
