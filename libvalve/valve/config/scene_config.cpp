@@ -29,6 +29,10 @@ void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.max_time = r.quantity("max_time", Dimension::time, std::string("1e6 ms"), 1e-9, 1e15);
   o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
   o.adaptive = r.boolean("adaptive", true);
+  o.error_estimate = r.choice("error_estimate", {"step_doubling", "predictor"}, std::string("step_doubling")) ==
+                             "predictor"
+                         ? ErrorEstimate::predictor
+                         : ErrorEstimate::step_doubling;
   o.linear_solver = parse_linear_solver(
       r.choice("linear_solver", linear_solver_names(), std::string("auto")));
   o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);

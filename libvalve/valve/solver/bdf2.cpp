@@ -92,6 +92,48 @@ double Bdf2Integrator::max_node_distance(const VecX& a, const VecX& b, bool moni
   return m;
 }
 
+bool Bdf2Integrator::accept_error(double err) {
+  const double scale = err > 0 ? 0.9 * std::cbrt(opt_.truncation_tolerance / err) : 2.0;
+  if (err > opt_.truncation_tolerance) {
+    h_ *= std::clamp(scale, 0.1, 0.5);
+    return false;
+  }
+  h_hist_ = h_;
+  h_ = std::min(opt_.max_step, h_ * std::clamp(scale, 0.2, 2.0));
+  return true;
+}
+
+double Bdf2Integrator::doubling_step(double load, History& accepted) {
+  History big, half1;
+  bool ok = step(resampled(2 * h_), 2 * h_, load, big) && step(resampled(h_), h_, load, half1);
+  if (ok) {
+    const double save_t = t_;
+    t_ += h_;
+    const History mid{half1.x, half1.v, half1.x_prev, half1.v_prev, false};
+    ok = step(mid, h_, load, accepted);
+    t_ = save_t;
+  }
+  if (!ok) {
+    h_ *= 0.25;
+    return 0;
+  }
+  const double h = h_;
+  return accept_error(max_node_distance(accepted.x, big.x, false)) ? 2 * h : 0;
+}
+
+double Bdf2Integrator::predictor_step(double load, History& accepted) {
+  const History in = resampled(h_);
+  if (!step(in, h_, load, accepted)) {
+    h_ *= 0.25;
+    return 0;
+  }
+  double diff = 0;  // largest nodal |x^{n+1} - x_p|, x_p = x^{n-1} + 2 h v^n
+  for (int i = 0; i < sys_.num_nodes(); ++i)
+    diff = std::max(diff, (node3(accepted.x, i) - node3(in.x_prev, i) - 2 * h_ * node3(in.v, i)).norm());
+  const double h = h_;
+  return accept_error(0.4 * diff) ? h : 0;
+}
+
 SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
   const auto t_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
@@ -104,7 +146,7 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
   double settle_start = t_;
   const double t0 = t_;
   long steps = 0;
-  History big, half1, half2;
+  History half2;
   auto finish = [&](SolverStatus st, std::string reason) {
     sum.status = st;
     sum.reason = std::move(reason);
@@ -141,41 +183,23 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
       return finish(SolverStatus::failed, "step size fell below min_step (the model does not converge)");
 
     double advanced = 0;
+    long taken = 1;
     if (!opt_.adaptive) {
       if (!step(resampled(h_), h_, load, half2)) {
         h_ *= 0.5;  // a fixed-step run still survives a failed solve
         ++sum.rejected_steps;
         continue;
       }
-      half1.x = x_;
       advanced = h_;
       h_hist_ = h_;
     } else {
-      const bool ok_big = step(resampled(2 * h_), 2 * h_, load, big);
-      const bool ok_small = ok_big && step(resampled(h_), h_, load, half1);
-      bool ok = ok_small;
-      if (ok) {
-        const double save_t = t_;
-        t_ += h_;
-        History mid{half1.x, half1.v, half1.x_prev, half1.v_prev, false};
-        ok = step(mid, h_, load, half2);
-        t_ = save_t;
-      }
-      if (!ok) {
-        h_ *= 0.25;
+      const bool doubling = opt_.error_estimate == ErrorEstimate::step_doubling || restart_;
+      advanced = doubling ? doubling_step(load, half2) : predictor_step(load, half2);
+      if (advanced == 0) {
         ++sum.rejected_steps;
         continue;
       }
-      const double err = max_node_distance(half2.x, big.x, false);
-      const double scale = err > 0 ? 0.9 * std::cbrt(opt_.truncation_tolerance / err) : 2.0;
-      if (err > opt_.truncation_tolerance) {
-        h_ *= std::clamp(scale, 0.1, 0.5);
-        ++sum.rejected_steps;
-        continue;
-      }
-      advanced = 2 * h_;
-      h_hist_ = h_;
-      h_ = std::min(opt_.max_step, h_ * std::clamp(scale, 0.2, 2.0));
+      taken = doubling ? 2 : 1;
     }
     restart_ = false;
     x_prev_ = half2.x_prev;
@@ -183,7 +207,7 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
     x_ = half2.x;
     v_ = half2.v;
     t_ += advanced;
-    steps += opt_.adaptive ? 2 : 1;
+    steps += taken;
     if (on_accepted) on_accepted(x_, t_);
 
     sum.last_monitor_displacement_mm = max_node_distance(x_, half2.x_prev, true);
