@@ -193,7 +193,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     ChordaeConfig cc;
     cc.file = resolve(base_dir, c.string("file"));
     cc.youngs_modulus = c.quantity("youngs_modulus", Dimension::pressure, std::string("40 MPa"), 1e-6, 1e6);
-    cc.diameter = c.quantity("diameter", Dimension::length, std::string("0 mm"), 0.0, 10);
+    if (c.has("diameter")) cc.diameter = c.quantity("diameter", Dimension::length, std::nullopt, 0.0, 10);
+    else c.record("diameter", "each chord's diameter_mm from the chordae file");
     cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, std::string("1 mm"), 0.0, 100);
     cc.rest_length_scale = c.number("rest_length_scale", 1.0, 0.2, 5.0);
     cc.types = c.string_list("types", std::vector<std::string>{"primary", "secondary", "strut"});

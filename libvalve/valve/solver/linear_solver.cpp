@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "valve/core/error.hpp"
+#include "valve/solver/constrained_system.hpp"
 
 namespace valve {
 namespace {
@@ -35,6 +36,32 @@ void silence(Eigen::CholmodSimplicialLDLT<M, UpLo>& d) {
   d.cholmod().print = 0;
 }
 
+// The pattern a decomposition was last analysed for. Contact grows the Jacobian pattern
+// during a solve, so the symbolic analysis is redone only when the pattern changes.
+class AnalysedPattern {
+ public:
+  template <class Decomposition>
+  void factorize(Decomposition& dec, const SparseMatrix& A) {
+    if (!matches(A)) {
+      dec.analyzePattern(A);
+      analysed_ = true;
+      outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+      inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+    }
+    dec.factorize(A);
+  }
+
+ private:
+  bool matches(const SparseMatrix& A) const {
+    return analysed_ && A.isCompressed() && static_cast<size_t>(A.outerSize() + 1) == outer_.size() &&
+           static_cast<size_t>(A.nonZeros()) == inner_.size() &&
+           std::equal(outer_.begin(), outer_.end(), A.outerIndexPtr()) &&
+           std::equal(inner_.begin(), inner_.end(), A.innerIndexPtr());
+  }
+  bool analysed_ = false;
+  std::vector<int> outer_, inner_;
+};
+
 // Direct solvers share the analyse-once / factorize-per-matrix pattern.
 template <class Decomposition>
 class DirectSolver final : public LinearSolver {
@@ -44,14 +71,7 @@ class DirectSolver final : public LinearSolver {
   std::string name() const override { return name_; }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
-    if (!analysed_ || !same_pattern(A)) {
-      // Contact grows the Jacobian pattern during a solve: analyse again when it changes.
-      dec_.analyzePattern(A);
-      analysed_ = true;
-      outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
-      inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
-    }
-    dec_.factorize(A);
+    pattern_.factorize(dec_, A);
     ++stats_.factorizations;
     stats_.factor_seconds += since(t0);
     ok_ = dec_.info() == Eigen::Success;
@@ -73,15 +93,21 @@ class DirectSolver final : public LinearSolver {
   std::string name_;
   bool symmetric_;
   Decomposition dec_;
-  bool same_pattern(const SparseMatrix& A) const {
-    return A.isCompressed() && static_cast<size_t>(A.outerSize() + 1) == outer_.size() &&
-           static_cast<size_t>(A.nonZeros()) == inner_.size() &&
-           std::equal(outer_.begin(), outer_.end(), A.outerIndexPtr()) &&
-           std::equal(inner_.begin(), inner_.end(), A.innerIndexPtr());
-  }
-  bool analysed_ = false, ok_ = false;
-  std::vector<int> outer_, inner_;
+  AnalysedPattern pattern_;
+  bool ok_ = false;
 };
+
+// Books one Krylov solve into `stats`; true if it converged to finite values.
+template <class Krylov>
+bool book_krylov_solve(const Krylov& it, const VecX& x, std::chrono::steady_clock::time_point t0,
+                       LinearSolverStats& stats) {
+  ++stats.solves;
+  stats.iterations += it.iterations();
+  stats.solve_seconds += since(t0);
+  const bool good = it.info() == Eigen::Success && x.allFinite();
+  if (!good) ++stats.failures;
+  return good;
+}
 
 template <class Krylov>
 class IterativeSolver final : public LinearSolver {
@@ -106,18 +132,65 @@ class IterativeSolver final : public LinearSolver {
     if (!ok_) return false;
     const auto t0 = std::chrono::steady_clock::now();
     x = it_.solve(b);
-    ++stats_.solves;
-    stats_.iterations += it_.iterations();
-    stats_.solve_seconds += since(t0);
-    const bool good = it_.info() == Eigen::Success && x.allFinite();
-    if (!good) ++stats_.failures;
-    return good;
+    return book_krylov_solve(it_, x, t0, stats_);
   }
 
  private:
   std::string name_;
   bool symmetric_;
   Krylov it_;
+  bool ok_ = false;
+};
+
+// Eigen preconditioner interface over a factorization owned by the solver below.
+class SymmetricPartPreconditioner {
+ public:
+  using Factorization = Eigen::SimplicialLDLT<SparseMatrix>;
+  template <class M>
+  SymmetricPartPreconditioner& analyzePattern(const M&) { return *this; }
+  template <class M>
+  SymmetricPartPreconditioner& factorize(const M&) { return *this; }
+  template <class M>
+  SymmetricPartPreconditioner& compute(const M&) { return *this; }
+  template <class Rhs>
+  VecX solve(const Rhs& b) const { return factorization->solve(b); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+  const Factorization* factorization = nullptr;
+};
+
+// The whole (non-symmetric) system by BiCGStab, preconditioned by the LDLᵀ factorization of
+// its symmetric part (see LinearSolverType::ldlt_bicgstab).
+class SymmetricPartBiCGStab final : public LinearSolver {
+ public:
+  SymmetricPartBiCGStab(double tol, int max_it) {
+    it_.setTolerance(tol);
+    it_.setMaxIterations(max_it);
+    it_.preconditioner().factorization = &ldlt_;
+  }
+  bool needs_symmetric() const override { return false; }
+  std::string name() const override { return "ldlt_bicgstab"; }
+  bool factorize(const SparseMatrix& A) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    pattern_.factorize(ldlt_, symmetric_part(A));
+    it_.compute(A);
+    ++stats_.factorizations;
+    stats_.factor_seconds += since(t0);
+    ok_ = ldlt_.info() == Eigen::Success;
+    if (!ok_) ++stats_.failures;
+    return ok_;
+  }
+  bool solve(const VecX& b, VecX& x) override {
+    if (!ok_) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    // Start from the symmetric part's solution: the skew part is a small correction.
+    x = it_.solveWithGuess(b, ldlt_.solve(b));
+    return book_krylov_solve(it_, x, t0, stats_);
+  }
+
+ private:
+  SymmetricPartPreconditioner::Factorization ldlt_;
+  AnalysedPattern pattern_;
+  Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner> it_;
   bool ok_ = false;
 };
 
@@ -135,7 +208,8 @@ namespace {
 const LinearSolverType kAllTypes[] = {LinearSolverType::automatic, LinearSolverType::cholmod_llt,
                                       LinearSolverType::cholmod_ldlt, LinearSolverType::ldlt,
                                       LinearSolverType::umfpack, LinearSolverType::klu,
-                                      LinearSolverType::cg, LinearSolverType::bicgstab, LinearSolverType::lu};
+                                      LinearSolverType::cg, LinearSolverType::bicgstab, LinearSolverType::lu,
+                                      LinearSolverType::ldlt_bicgstab};
 }  // namespace
 
 const std::vector<std::string>& linear_solver_names() {
@@ -166,6 +240,7 @@ std::string to_string(LinearSolverType t) {
     case LinearSolverType::cg: return "cg";
     case LinearSolverType::bicgstab: return "bicgstab";
     case LinearSolverType::lu: return "lu";
+    case LinearSolverType::ldlt_bicgstab: return "ldlt_bicgstab";
   }
   return "?";
 }
@@ -176,7 +251,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
   switch (type) {
     case LinearSolverType::automatic:
       if (symmetry == SystemSymmetry::symmetrized)
-        return make_linear_solver(large ? LinearSolverType::cholmod_llt : LinearSolverType::ldlt, tol, max_it);
+        return make_linear_solver(large ? LinearSolverType::cholmod_llt : LinearSolverType::ldlt_bicgstab, tol, max_it);
       return make_linear_solver(large ? LinearSolverType::umfpack : LinearSolverType::klu, tol, max_it);
     case LinearSolverType::cholmod_llt:
       return std::make_unique<DirectSolver<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_llt", true);
@@ -197,6 +272,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
     case LinearSolverType::bicgstab:
       return std::make_unique<IterativeSolver<Eigen::BiCGSTAB<SparseMatrix, Eigen::IncompleteLUT<double>>>>(
           "bicgstab", false, tol, max_it);
+    case LinearSolverType::ldlt_bicgstab:
+      return std::make_unique<SymmetricPartBiCGStab>(tol, max_it);
   }
   throw InputError("linear solver: unknown type");
 }

@@ -1,7 +1,8 @@
 #pragma once
 // Linear solvers behind one interface: CHOLMOD supernodal Cholesky and simplicial LDLᵀ,
 // UMFPACK and KLU sparse LU (SuiteSparse), simplicial LDLᵀ, preconditioned conjugate
-// gradients, BiCGStab and sparse LU (Eigen).
+// gradients, BiCGStab and sparse LU (Eigen), and BiCGStab preconditioned by the LDLᵀ of the
+// system's symmetric part (ldlt_bicgstab).
 // The symbolic analysis is done once per pattern; factorize() is called per matrix.
 #include <memory>
 #include <string>
@@ -11,17 +12,26 @@
 
 namespace valve {
 
-enum class LinearSolverType { automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu };
+enum class LinearSolverType { automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu, ldlt_bicgstab };
 
 /// The names parse_linear_solver() accepts, as scene files spell them.
 const std::vector<std::string>& linear_solver_names();
 
-/// "automatic" by size. For the symmetrized systems of BDF2, Eigen's simplicial LDLᵀ below
-/// `kLargeSystemDofs` unknowns and CHOLMOD supernodal Cholesky above: on the sample mitral
-/// contact system (1,140 unknowns, 90k entries in L) one factorization takes 3.3 ms (Eigen
-/// LDLᵀ), 6.2 ms (CHOLMOD simplicial LDLᵀ, which converts and copies on every call) and
-/// 6.6 ms (CHOLMOD supernodal); on a 10,113-triangle mitral membrane a BDF2 step took 0.9 s
-/// with CHOLMOD supernodal against 1.5 s with CHOLMOD simplicial. For non-symmetric systems
+/// "automatic" by size. For BDF2 (SystemSymmetry::symmetrized: a symmetric approximation is
+/// acceptable) `ldlt_bicgstab` below `kLargeSystemDofs` unknowns: BiCGStab on the whole
+/// system, preconditioned by Eigen's simplicial LDLᵀ of its symmetric part, started from that
+/// factorization's solution. The whole system matters: follower pressure has an antisymmetric
+/// stiffness, and with only the symmetric part in the matrix the sample mitral closure let a
+/// folded free-edge node orbit at steps of 5-25 ms (predictor estimate, tolerance 0.03-0.1 mm:
+/// 0.04-0.08 mm per step for 90 s simulated, never settling); with the whole system it settles
+/// at every tolerance tried. Cost there: 3.3 ms per factorization and 3.2 BiCGStab iterations
+/// per solve on average (iterative_tolerance 1e-10), against 2.7 ms for the symmetric part alone and 5.7 ms (UMFPACK) or
+/// 7.9 ms (KLU) for an LU of the whole system. Above `kLargeSystemDofs`, CHOLMOD supernodal
+/// Cholesky of the symmetric part: on the sample mitral contact system (1,140 unknowns, 90k
+/// entries in L) one factorization takes 3.3 ms (Eigen LDLᵀ), 6.2 ms (CHOLMOD simplicial
+/// LDLᵀ, which converts and copies on every call) and 6.6 ms (CHOLMOD supernodal); on a
+/// 10,113-triangle mitral membrane a BDF2 step took 0.9 s with CHOLMOD supernodal against
+/// 1.5 s with CHOLMOD simplicial. For non-symmetric systems
 /// (static Newton), KLU below `kLargeSystemDofs` (least overhead on a few hundred unknowns)
 /// and UMFPACK above (multifrontal with BLAS: 4x faster than KLU at 30,000 unknowns; one
 /// factorization of a 20,000-triangle leaflet takes 0.72 s with KLU, 0.18 s with UMFPACK).
