@@ -2,6 +2,7 @@
 // The interface every force term implements. Terms know nothing of solvers: they add
 // nodal forces f(x, v) and, when asked, their Jacobians df/dx and df/dv into a pattern
 // built once from couplings(). The solver sees only the sum of terms.
+#include <algorithm>
 #include <limits>
 #include <string>
 #include <utility>
@@ -44,6 +45,12 @@ class ForceTerm {
   }
   /// Largest node displacement per solver step (mm) this term tolerates; infinity if any.
   virtual double max_step_length() const { return std::numeric_limits<double>::infinity(); }
+  /// Per node (lowered in place): the displacement this term tolerates in a step from the
+  /// state of the last update_couplings(). By default max_step_length() for every node.
+  virtual void limit_node_steps(std::vector<double>& limits) const {
+    const double m = max_step_length();
+    for (double& l : limits) l = std::min(l, m);
+  }
   /// Whether this is an applied load (pressure, edge loads) rather than a material or
   /// constraint response; solvers use the applied load to scale residual tolerances.
   virtual bool is_external_load() const { return false; }

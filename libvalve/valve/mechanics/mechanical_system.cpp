@@ -94,6 +94,12 @@ bool MechanicalSystem::energy(const State& s, double& e) const {
   return true;
 }
 
+std::vector<double> MechanicalSystem::node_step_limits() const {
+  std::vector<double> limits(n_, std::numeric_limits<double>::infinity());
+  for (const auto& t : terms_) t->limit_node_steps(limits);
+  return limits;
+}
+
 double MechanicalSystem::max_step_length() const {
   double m = std::numeric_limits<double>::infinity();
   for (const auto& t : terms_) m = std::min(m, t->max_step_length());

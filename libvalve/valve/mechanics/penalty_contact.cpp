@@ -1,5 +1,7 @@
 #include "valve/mechanics/penalty_contact.hpp"
 
+#include <limits>
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -56,8 +58,10 @@ bool PenaltyContactTerm::update_couplings(const VecX& x) {
   bool stale = built_at_.size() != x.size();
   for (int i = 0; !stale && i < x.size() / 3; ++i) stale = (node3(x, i) - node3(built_at_, i)).norm() > verlet_step();
   if (stale) rebuild_candidates(x);
-  // The pattern needs the pairs active here, where the Jacobian is evaluated.
-  active_contacts(x, contacts_);
+  // The pattern needs the pairs active here, where the Jacobian is evaluated; the step
+  // limits need every candidate's distance here, where the solver's step starts.
+  node_gap_.assign(x.size() / 3, std::numeric_limits<double>::infinity());
+  active_contacts(x, contacts_, &node_gap_);
   contacts_x_ = x;
   std::vector<std::pair<int, int>> coupled;
   for (const Contact& c : contacts_)
@@ -128,8 +132,20 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
   stats_.broad_phase_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out) const {
+void PenaltyContactTerm::limit_node_steps(std::vector<double>& limits) const {
+  const double L = verlet_step(), floor = 0.4 * opt_.separation;
+  for (size_t i = 0; i < limits.size(); ++i) {
+    const double g = i < node_gap_.size() ? node_gap_[i] : 0.0;  // before any update: the uniform bound
+    limits[i] = std::min(limits[i], std::min(L, std::max(floor, 0.4 * g)));
+  }
+}
+
+void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<double>* node_gap) const {
   out.clear();
+  auto note_gap = [&](std::initializer_list<int> nodes, double d) {
+    if (node_gap)
+      for (int v : nodes) (*node_gap)[v] = std::min((*node_gap)[v], d);
+  };
   const double delta = opt_.separation;
   const auto& tris = topology_.triangles();
   for (const auto& [i, t] : face_pairs_) {
@@ -138,6 +154,7 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     const Vec3 w = closest_point_weights(p, xa, xb, xc);
     const Vec3 q = w[0] * xa + w[1] * xb + w[2] * xc;
     const double d = (p - q).norm();
+    note_gap({i, tri[0], tri[1], tri[2]}, d);
     if (d >= delta) continue;
     Contact ct;
     ct.nodes[0] = i, ct.weights[0] = 1;
@@ -155,6 +172,7 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
     const Vec3 diff = (xa + s * (xb - xa)) - (xc + u * (xd - xc));
     const double dist = diff.norm();
+    note_gap({a, b, c, d}, dist);
     if (dist >= delta) continue;
     Contact ct;
     ct.nodes[0] = a, ct.nodes[1] = b, ct.nodes[2] = c, ct.nodes[3] = d;

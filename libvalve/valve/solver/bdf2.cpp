@@ -69,11 +69,11 @@ bool Bdf2Integrator::step(const History& in, double h, double load, History& out
   if (!solver_->factorize(A) || !solver_->solve(b, dx)) return false;
   out.x_prev = in.x;
   out.v_prev = in.v;
-  // A step longer than the force terms tolerate (contact: the detection slab) is a failed step.
-  const double limit = sys_.max_step_length();
-  if (std::isfinite(limit))
-    for (int i = 0; i < sys_.num_nodes(); ++i)
-      if (dx.segment<3>(3 * i).norm() > limit) return false;
+  // A node moving further than the force terms tolerate (contact: the separation and the
+  // candidate list, see penalty_contact.hpp) fails the step.
+  const std::vector<double> limits = sys_.node_step_limits();
+  for (int i = 0; i < sys_.num_nodes(); ++i)
+    if (std::isfinite(limits[i]) && dx.segment<3>(3 * i).norm() > limits[i]) return false;
   out.x = in.x + dx;
   out.v = in.euler ? VecX(dx / h) : VecX((1.5 * out.x - 2.0 * in.x + 0.5 * in.x_prev) / h);
   out.euler = false;
