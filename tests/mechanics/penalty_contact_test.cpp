@@ -167,6 +167,37 @@ TEST_CASE("penalty contact stops free edges crossing edge-on", "[mechanics][pena
   CHECK(node3(f, 5).norm() == 0);
 }
 
+TEST_CASE("penalty contact step limits per node follow the distance to the other surface", "[mechanics][penalty_contact]") {
+  // Leaflet 1 is leaflet 0 lifted by h: every node-face and edge-edge pair across the two is
+  // h apart, so every node's g is h. Default D = δ + 4 max(δ, mean edge / 2) with edges of
+  // 2, 2 and 2√2 mm, so L = (D − δ)/4 = mean edge / 2.
+  auto lifted_pair = [](double h) {
+    TriMesh m;
+    m.points.resize(6, 3);
+    m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0, 0, 0, h, 2, 0, h, 0, 2, h;
+    m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+    m.leaflet = {0, 1};
+    m.fill_defaults();
+    return m;
+  };
+  const double delta = 0.25, L = (4 + 2 * std::sqrt(2.0)) / 3 / 2;
+  for (double h : {0.1, 1.0, 3.5, 6.0}) {
+    const TriMesh m = lifted_pair(h);
+    PenaltyContactTerm c(m, PenaltyContactOptions{}, std::vector<char>(18, 0));
+    std::vector<double> limits(6, 1e9);
+    c.limit_node_steps(limits);  // no state seen yet: the uniform bound
+    for (double l : limits) CHECK(l == Approx(0.4 * delta));
+    c.update_couplings(flatten(m.points));
+    limits.assign(6, 1e9);
+    c.limit_node_steps(limits);
+    // h = 0.1: inside δ, 0.4 δ; 1.0: 0.4 h; 3.5: 0.4 h = 1.4 is above L; 6.0: beyond D, no pair.
+    const double expected = h > c.detection_distance() ? L : std::min(L, 0.4 * std::max(delta, h));
+    INFO("h = " << h);
+    for (double l : limits) CHECK(l == Approx(expected));
+  }
+  CHECK(L == Approx(1.1381).margin(1e-4));
+}
+
 TEST_CASE("penalty contact exclusions, step limit and option checks", "[mechanics][penalty_contact]") {
   const TriMesh m = two_sheets(0.1);
   const VecX x = flatten(m.points);
