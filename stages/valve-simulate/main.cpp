@@ -198,10 +198,11 @@ int main(int argc, char** argv) {
       nlohmann::json per = nlohmann::json::array();
       for (const auto& l : coaptation->leaflets)
         per.push_back({{"leaflet", l.leaflet}, {"area_mm2", l.area_mm2}, {"midline_height_mm", l.midline_height_mm},
-                       {"min_height_mm", l.min_height_mm}, {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
+                       {"midline_band_top_mm", l.midline_band_top_mm}, {"min_height_mm", l.min_height_mm}, {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
                        {"closed", l.closed}});
       summary.metrics()["coaptation"] = {{"closed", coaptation->closed}, {"central_gap", coaptation->central_gap},
-                                         {"threshold_mm", CoaptationOptions{}.threshold_mm}, {"leaflets", per}};
+                                         {"threshold_mm", CoaptationOptions{}.threshold_mm},
+                                         {"free_edge_offset_mm", CoaptationOptions{}.free_edge_offset_mm}, {"leaflets", per}};
     }
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);

@@ -229,6 +229,45 @@ TEST_CASE("coaptation: contact not connected to the free edge adds area but no h
   CHECK(r.closed);
 }
 
+TEST_CASE("coaptation: a band that begins below a free edge that does not touch", "[analysis][coaptation]") {
+  // The upper sheet ends at y = 9.25, so the lower sheet coapts on rows y = 7..9 only: its
+  // free edge (y = 10) and the row y = 9.5 do not touch. Down a column the band begins at
+  // d = hypot(0.5, lip) + 0.5 (row y = 9) and ends 4 rows lower (y = 7): height 2 mm.
+  TriMesh m;
+  add_sheet(m, lower_sheet());
+  add_sheet(m, {0.25, 9.75, 6.75, 9.25, 19, 10, 0.3, -kLip, 1, false});
+  m.fill_defaults();
+  const double top = std::hypot(0.5, kLip) + 0.5;
+  const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
+  for (int i = 1; i <= 19; ++i) {
+    INFO("column " << i);
+    CHECK(r.coapting[lower(i, 14)] == 1);
+    CHECK(r.coapting[lower(i, 18)] == 1);
+    CHECK(r.coapting[lower(i, 19)] == 0);
+    CHECK(r.coapting[lower(i, 20)] == 0);
+  }
+  const LeafletCoaptation& l0 = r.leaflets[0];
+  for (int k = 1; k <= 19; ++k) {
+    INFO("free-edge node " << k);
+    CHECK(l0.band_top_mm[k] == Approx(top).margin(1e-9));
+    CHECK(l0.height_mm[k] == Approx(2.0).margin(1e-9));
+  }
+  CHECK(l0.height_mm[0] == 0);
+  CHECK(l0.band_top_mm[0] == -1);
+  CHECK(l0.midline_height_mm == Approx(2.0).margin(1e-9));
+  CHECK(l0.midline_band_top_mm == Approx(top).margin(1e-9));
+  CHECK(l0.min_height_mm == Approx(2.0).margin(1e-9));
+  CHECK(l0.closed);
+  CHECK(r.central_gap);  // the free edge itself does not touch
+  // A band beginning deeper than the offset is not coaptation from the free edge.
+  CoaptationOptions o;
+  o.free_edge_offset_mm = 0.9;
+  const CoaptationResult deep = analyze_coaptation(m, flatten(m.points), o);
+  CHECK(deep.leaflets[0].min_height_mm == 0);
+  CHECK(deep.leaflets[0].midline_band_top_mm == -1);
+  CHECK_FALSE(deep.leaflets[0].closed);
+}
+
 TEST_CASE("coaptation: the commissure margin excludes the free-edge ends", "[analysis][coaptation]") {
   const TriMesh m = overlap_pair(0.3);
   CoaptationOptions o;
@@ -272,6 +311,11 @@ TEST_CASE("coaptation: invalid options and inputs throw InputError", "[analysis]
   for (double margin : {-0.01, 0.5, 0.7, nan}) {
     CoaptationOptions o;
     o.commissure_margin = margin;
+    CHECK_THROWS_AS(o.validate(), InputError);
+  }
+  for (double offset : {-0.1, nan, HUGE_VAL}) {
+    CoaptationOptions o;
+    o.free_edge_offset_mm = offset;
     CHECK_THROWS_AS(o.validate(), InputError);
   }
   CoaptationOptions ok;

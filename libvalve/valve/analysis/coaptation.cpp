@@ -114,6 +114,8 @@ void CoaptationOptions::validate() const {
     throw_input_error("coaptation", "threshold_mm", "a finite distance > 0 mm", std::to_string(threshold_mm));
   if (!(commissure_margin >= 0 && commissure_margin < 0.5))
     throw_input_error("coaptation", "commissure_margin", "a fraction in [0, 0.5)", std::to_string(commissure_margin));
+  if (!(free_edge_offset_mm >= 0) || !std::isfinite(free_edge_offset_mm))
+    throw_input_error("coaptation", "free_edge_offset_mm", "a finite distance >= 0 mm", std::to_string(free_edge_offset_mm));
 }
 
 std::string CoaptationResult::report() const {
@@ -204,6 +206,7 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
     lc.middle_node = free_edge_middle_node(m, id);
     const int nf = static_cast<int>(lc.free_edge.size());
     lc.height_mm.assign(nf, 0.0);
+    lc.band_top_mm.assign(nf, -1.0);
     if (nf > 0) {
       // Deformed edge graph of this leaflet; heights only over coapting, unshared nodes.
       for (auto& list : adj) list.clear();
@@ -228,10 +231,16 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
         }
         ++ncomp;
       }
+      // Per column: the coapting node nearest the free edge picks the band.
+      std::vector<int> band(nf, -1);
       for (int v = 0; v < n; ++v) {
-        if (component[v] < 0 || src[v] < 0) continue;
-        const int f = lc.free_edge[src[v]];
-        if (component[f] == component[v]) lc.height_mm[src[v]] = std::max(lc.height_mm[src[v]], dist[v]);
+        if (component[v] < 0 || src[v] < 0 || dist[v] > opt.free_edge_offset_mm) continue;
+        const int k = src[v];
+        if (band[k] < 0 || dist[v] < lc.band_top_mm[k]) band[k] = component[v], lc.band_top_mm[k] = dist[v];
+      }
+      for (int v = 0; v < n; ++v) {
+        if (component[v] < 0 || src[v] < 0 || component[v] != band[src[v]]) continue;
+        lc.height_mm[src[v]] = std::max(lc.height_mm[src[v]], dist[v] - lc.band_top_mm[src[v]]);
       }
 
       // Rest arc length along the free edge for the margins and the coapting fraction.
@@ -253,6 +262,7 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
       for (int k = 0; k < nf; ++k)
         if (lc.free_edge[k] == lc.middle_node) {
           lc.midline_height_mm = lc.height_mm[k];
+          lc.midline_band_top_mm = lc.band_top_mm[k];
           break;
         }
       lc.min_height_mm = std::isfinite(min_height) ? min_height : lc.midline_height_mm;

@@ -23,12 +23,18 @@
 //
 // Heights. d(v) = graph-geodesic distance from v to the nearest free-edge node of its
 // leaflet (multi-source Dijkstra over deformed edge lengths of the leaflet's own edges),
-// src(v) = that free-edge node. The height at free-edge node f is
-//   h(f) = max { d(v) : v coapting, src(v) = f, v connected to f through coapting nodes }
-// (0 if f does not coapt). Assigning each node to its nearest free-edge node measures the
-// strip "straight down" from f without a second geometric construction, and the
-// connectivity requirement keeps contact patches that are separated from the free edge
-// (e.g. a belly touching a neighbour lower down) out of the height. The graph distance
+// src(v) = that free-edge node. The column of f is { v : src(v) = f }. The band of f is
+// the coapting component (connected through coapting nodes) of the coapting node of f's
+// column nearest the free edge, provided that node lies within free_edge_offset_mm of it:
+//   top(f) = min { d(v) : v coapting, src(v) = f }          (band only if top(f) ≤ offset)
+//   h(f)   = max { d(v) : src(v) = f, v in the band } − top(f)
+// (0 without a band). Where f itself coapts, top(f) = 0 and h(f) is the depth of the strip
+// that hangs from f. The offset admits a strip whose top lies a little below a free edge
+// that flares apart (the closed three-leaflet valve: free edges stretched from 20.9 to
+// 26-28 mm fold up at the centre, and the contact band begins one row of triangles, 1.6-2 mm,
+// below them), while contact patches further down (a belly touching a neighbour) stay out
+// of the height. Assigning each node to its nearest free-edge node measures the strip
+// "straight down" from f without a second geometric construction. The graph distance
 // follows the mesh, so it overestimates a straight line by at most the zig-zag of the
 // triangulation (exact along grid lines of a structured mesh).
 //
@@ -48,6 +54,10 @@ struct CoaptationOptions {
   double threshold_mm = 0.5;  // seed 4.2.5: a node coapts when its gap is at most this
   /// Fraction of each free edge's rest length, at both ends, excluded from min_height_mm.
   double commissure_margin = 0.1;
+  /// How far below the free edge (mm, along the leaflet) a contact band may begin and still
+  /// count as coaptation from the free edge: the seed's normal valve coapts to about 3 mm
+  /// below the free edge (Fig. 4.4C), so a band that begins deeper is not that coaptation.
+  double free_edge_offset_mm = 3.0;
   void validate() const;  // throws InputError: threshold not > 0, margin outside [0, 0.5)
 };
 
@@ -64,9 +74,11 @@ struct LeafletCoaptation {
   int leaflet = 0;
   double area_mm2 = 0;            // deformed, interpolated indicator (see above)
   std::vector<int> free_edge;     // free_edge_polyline(mesh, leaflet), corners included
-  std::vector<double> height_mm;  // h(f) per free_edge node (0 where f does not coapt)
+  std::vector<double> height_mm;  // h(f) per free_edge node (0 without a band)
+  std::vector<double> band_top_mm;  // top(f) per free_edge node; -1 without a band
   int middle_node = -1;           // free_edge_middle_node(mesh, leaflet)
   double midline_height_mm = 0;   // h at middle_node (0 if there is none)
+  double midline_band_top_mm = -1;  // top at middle_node (-1 without a band)
   /// Minimum of h over the free-edge nodes outside the commissure margins; if no node lies
   /// between the margins (very coarse free edge), h at the middle node. 0 without free edge.
   double min_height_mm = 0;
