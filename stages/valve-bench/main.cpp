@@ -1,8 +1,11 @@
-// valve-bench --scene SCENE.json --out DIR [--mesh FILE] [--repetitions N] [--quiet]
+// valve-bench --scene SCENE.json --out DIR [--mesh FILE] [--repetitions N] [--broad-phase] [--quiet]
 // Cost of the scene's closure with both models (seed Table 3.3 and the targets):
 // internal-force time per element per evaluation (forces only, and with the Jacobian), the
 // M-S/FE ratio, and for each model the closure's wall time, steps, factorizations and total
 // time over one factorization of the same system. Writes DIR/bench.json and DIR/bench.csv.
+// --broad-phase: instead, the contact broad phase (sweep and prune, spatial hash) at the
+// mesh's positions (e.g. a closed valve from valve-simulate) and on its ×4 and ×16
+// subdivisions; writes DIR/broad_phase.json and DIR/broad_phase.csv.
 // Timings are medians over repetitions within this process; quote them with their ratios.
 #include <cstdio>
 #include <filesystem>
@@ -23,7 +26,7 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   limit_blas_threads_unless_set();
   return run_stage("valve-bench", [&] {
-    CommandLine cl(argc, argv, {"scene", "out", "mesh", "repetitions", "set"}, {"quiet"});
+    CommandLine cl(argc, argv, {"scene", "out", "mesh", "repetitions", "set"}, {"quiet", "broad-phase"});
     const fs::path scene_file = cl.require("scene");
     const fs::path out = cl.require("out");
     json j = load_json_file(scene_file);
@@ -39,6 +42,22 @@ int main(int argc, char** argv) {
     summary.add_input("scene", scene_file);
     summary.add_input("mesh", scene.mesh_path);
     summary.parameters() = scene.used;
+    if (cl.has("broad-phase")) {
+      std::ostringstream csv;
+      csv << "method,triangles,margin_mm,seconds,pairs\n";
+      nlohmann::json rows = nlohmann::json::array();
+      for (const auto& c : measure_broad_phase(scene, mesh, reps)) {
+        csv << c.method << "," << c.triangles << "," << c.margin_mm << "," << c.seconds << "," << c.pairs << "\n";
+        rows.push_back({{"method", c.method}, {"triangles", c.triangles}, {"margin_mm", c.margin_mm},
+                        {"seconds", c.seconds}, {"pairs", c.pairs}});
+      }
+      summary.metrics()["broad_phase"] = rows;
+      write_file_atomic(out / "broad_phase.csv", csv.str());
+      write_file_atomic(out / "broad_phase.json", rows.dump(2) + "\n");
+      summary.write();
+      if (!cl.has("quiet")) std::printf("%s", csv.str().c_str());
+      return 0;
+    }
     nlohmann::json models = nlohmann::json::object();
     std::ostringstream csv;
     csv << "model,triangles,force_ns_per_element,force_and_jacobian_ns_per_element,solver,status,steps,factorizations,"

@@ -10,7 +10,7 @@
 //    x range (a valve seen along its axis).
 //  - spatial_hash: a uniform grid whose cell is the mean inflated box size; each box is
 //    listed in the cells it overlaps, each node looks up its own cell. O(N + T) expected,
-//    insensitive to orientation. valve-bench measures both (`contact_broad_phase`).
+//    insensitive to orientation. `valve-bench --broad-phase` measures both (README).
 #include <string>
 #include <utility>
 #include <vector>

@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <chrono>
 
+#include "valve/core/error.hpp"
+#include "valve/mechanics/broad_phase.hpp"
 #include "valve/mechanics/mass_spring.hpp"
 #include "valve/mechanics/membrane_fe.hpp"
+#include "valve/mechanics/penalty_contact.hpp"
+#include "valve/mesh/subdivide.hpp"
 #include "valve/scene/simulation.hpp"
 #include "valve/solver/constrained_system.hpp"
 #include "valve/solver/linear_solver.hpp"
@@ -89,6 +93,35 @@ ClosureCost measure_closure(const SceneConfig& scene, const TriMesh& mesh, Model
   }
   out.one_factorization_seconds = median(t);
   out.ratio_to_factorization = out.one_factorization_seconds > 0 ? out.solve_seconds / out.one_factorization_seconds : 0;
+  return out;
+}
+
+std::vector<BroadPhaseCost> measure_broad_phase(const SceneConfig& sc, const TriMesh& mesh, int reps) {
+  const PenaltyContactOptions opt = sc.penalty_contact.value_or(PenaltyContactOptions{});
+  std::vector<BroadPhaseCost> out;
+  TriMesh level = mesh;
+  for (int refinement = 0; refinement < 3; ++refinement) {
+    if (refinement > 0) level = subdivide_midpoint(level);
+    const VecX x = flatten(level.points);
+    // The margin the contact term would use on this mesh (its detection distance D).
+    const double margin =
+        PenaltyContactTerm(level, opt, std::vector<char>(3 * level.num_nodes(), 0)).detection_distance();
+    std::vector<std::pair<int, int>> reference;
+    for (BroadPhaseMethod method : {BroadPhaseMethod::sweep_and_prune, BroadPhaseMethod::spatial_hash}) {
+      std::vector<double> times;
+      std::vector<std::pair<int, int>> pairs;
+      for (int r = 0; r < reps; ++r) {
+        const auto t0 = std::chrono::steady_clock::now();
+        pairs = broad_phase_pairs(x, level.triangles, margin, method);
+        times.push_back(seconds_since(t0));
+      }
+      if (method == BroadPhaseMethod::sweep_and_prune) reference = pairs;
+      else if (pairs != reference)
+        throw Error("broad phase: spatial_hash and sweep_and_prune disagree on " + std::to_string(level.num_triangles()) +
+                    " triangles (" + std::to_string(pairs.size()) + " vs " + std::to_string(reference.size()) + " pairs)");
+      out.push_back({to_string(method), level.num_triangles(), margin, median(times), static_cast<long>(pairs.size())});
+    }
+  }
   return out;
 }
 
