@@ -1,11 +1,10 @@
 #include "valve/mechanics/penalty_contact.hpp"
 
-#include <limits>
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "valve/core/error.hpp"
 #include "valve/mesh/closest_point.hpp"

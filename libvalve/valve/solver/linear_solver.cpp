@@ -62,6 +62,16 @@ class AnalysedPattern {
   std::vector<int> outer_, inner_;
 };
 
+// Books one factorization (or preconditioner build) into `stats`; true if it succeeded.
+bool book_factorization(Eigen::ComputationInfo info, std::chrono::steady_clock::time_point t0,
+                        LinearSolverStats& stats) {
+  ++stats.factorizations;
+  stats.factor_seconds += since(t0);
+  const bool ok = info == Eigen::Success;
+  if (!ok) ++stats.failures;
+  return ok;
+}
+
 // Direct solvers share the analyse-once / factorize-per-matrix pattern.
 template <class Decomposition>
 class DirectSolver final : public LinearSolver {
@@ -72,10 +82,7 @@ class DirectSolver final : public LinearSolver {
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
     pattern_.factorize(dec_, A);
-    ++stats_.factorizations;
-    stats_.factor_seconds += since(t0);
-    ok_ = dec_.info() == Eigen::Success;
-    if (!ok_) ++stats_.failures;
+    ok_ = book_factorization(dec_.info(), t0, stats_);
     return ok_;
   }
   bool solve(const VecX& b, VecX& x) override {
@@ -122,10 +129,7 @@ class IterativeSolver final : public LinearSolver {
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
     it_.compute(A);
-    ++stats_.factorizations;
-    stats_.factor_seconds += since(t0);
-    ok_ = it_.info() == Eigen::Success;
-    if (!ok_) ++stats_.failures;
+    ok_ = book_factorization(it_.info(), t0, stats_);
     return ok_;
   }
   bool solve(const VecX& b, VecX& x) override {
@@ -173,10 +177,7 @@ class SymmetricPartBiCGStab final : public LinearSolver {
     const auto t0 = std::chrono::steady_clock::now();
     pattern_.factorize(ldlt_, symmetric_part(A));
     it_.compute(A);
-    ++stats_.factorizations;
-    stats_.factor_seconds += since(t0);
-    ok_ = ldlt_.info() == Eigen::Success;
-    if (!ok_) ++stats_.failures;
+    ok_ = book_factorization(ldlt_.info(), t0, stats_);
     return ok_;
   }
   bool solve(const VecX& b, VecX& x) override {
