@@ -30,3 +30,22 @@ TEST_CASE("a material based on a preset overrides only the keys it names", "[con
   CHECK_THROWS_WITH(load_material(json{{"base", 3}}, "scene.json", "material", ".", nullptr),
                     Catch::Contains("material.base") && Catch::Contains("preset"));
 }
+
+TEST_CASE("the Texas TriValve presets load as HGO laws with the deck's values", "[config][material]") {
+  // Healthy_QuasiStatic.inp, VUANISO_ISO_Septal_Leaflet: 0.001000, 20.066890, 0.000191, 17.751490.
+  const MaterialConfig m = load_material(json("ttv_septal"), "scene.json", "material", ".", nullptr);
+  REQUIRE(m.hgo);
+  CHECK_FALSE(m.fung);
+  CHECK(m.hgo->C10 == Approx(0.001));
+  CHECK(m.hgo->C01 == Approx(20.06689));
+  CHECK(m.hgo->k1 == Approx(0.000191));
+  CHECK(m.hgo->k2 == Approx(17.75149));
+  CHECK(*m.thickness == Approx(0.65));
+  CHECK(m.law()->name() == "hgo");
+  // The mass-spring curves are fitted from the same law: the fibers are the stiffer direction
+  // at the top of the fit.
+  const BilinearParameters b = m.bilinear();
+  CHECK(b.fiber.m2 > b.cross.m2);
+  CHECK_THROWS_WITH(load_material(json{{"law", "hgo"}, {"C10", "1 kPa"}}, "scene.json", "material", ".", nullptr),
+                    Catch::Contains("C01"));
+}

@@ -26,7 +26,7 @@ MaterialConfig parse_material(JsonReader& r) {
   MaterialConfig m;
   m.name = r.string("name", std::string("custom"));
   m.source = r.string("source", std::string(""));
-  const std::string law = r.choice("law", {"fung", "bilinear"}, std::string("fung"));
+  const std::string law = r.choice("law", {"fung", "hgo", "bilinear"}, std::string("fung"));
   if (law == "fung") {
     FungParameters p;
     p.c = r.quantity("c", Dimension::pressure, std::nullopt, 1e-15, 1e3);
@@ -42,6 +42,15 @@ MaterialConfig parse_material(JsonReader& r) {
              "A1=" + std::to_string(p.A1) + " A2=" + std::to_string(p.A2) + " A3=" + std::to_string(p.A3) +
                  " A4=" + std::to_string(p.A4));
     m.fung = p;
+  }
+  if (law == "hgo") {
+    HgoParameters p;
+    p.C10 = r.quantity("C10", Dimension::pressure, std::nullopt, 1e-15, 1e3);
+    p.C01 = r.number("C01", std::nullopt, 1e-9, 1e4);
+    p.k1 = r.quantity("k1", Dimension::pressure, std::string("0 MPa"), 0, 1e3);
+    p.k2 = r.number("k2", 0.0, 0, 1e4);
+    p.kappa = r.number("kappa", 0.0, 0, 1.0 / 3);
+    m.hgo = p;
   }
   if (r.has("bilinear") || law == "bilinear") {
     JsonReader b = r.object("bilinear");
@@ -69,14 +78,15 @@ MaterialConfig parse_material(JsonReader& r) {
 
 BilinearParameters MaterialConfig::bilinear() const {
   if (bilinear_given) return *bilinear_given;
-  if (!fung) throw InputError("material " + name + ": expected a Fung law or bilinear curves, found neither");
-  return fit_bilinear_equibiaxial(FungLaw(*fung), fit);
+  if (!fung && !hgo) throw InputError("material " + name + ": expected a Fung or HGO law or bilinear curves, found neither");
+  return fit_bilinear_equibiaxial(*law(), fit);
 }
 
 std::shared_ptr<const MaterialLaw> MaterialConfig::law() const {
-  if (!fung)
-    throw InputError("material " + name + ": the membrane FE model needs a Fung law (law: fung), found bilinear curves only");
-  return std::make_shared<FungLaw>(*fung);
+  if (fung) return std::make_shared<FungLaw>(*fung);
+  if (hgo) return std::make_shared<HgoLaw>(*hgo);
+  throw InputError("material " + name +
+                   ": the membrane FE model needs a constitutive law (law: fung or hgo), found bilinear curves only");
 }
 
 fs::path config_directory() {

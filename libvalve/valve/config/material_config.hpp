@@ -1,6 +1,7 @@
 #pragma once
-// Leaflet material description: a Fung law (seed Eq. 3.1-3.3) and the bilinear curves the
-// mass-spring model uses, either fitted from the Fung law or given directly (Table 5.1).
+// Leaflet material description: a Fung law (seed Eq. 3.1-3.3) or an exponential HGO law
+// (the Texas TriValve deck's, hgo_law.hpp), and the bilinear curves the mass-spring model
+// uses, either fitted from that law or given directly (Table 5.1).
 // Presets live in configs/materials/<name>.json with their literature source.
 #include <filesystem>
 #include <memory>
@@ -9,6 +10,7 @@
 
 #include "valve/config/json_reader.hpp"
 #include "valve/material/bilinear_fit.hpp"
+#include "valve/material/hgo_law.hpp"
 #include "valve/material/material_law.hpp"
 
 namespace valve {
@@ -17,14 +19,15 @@ struct MaterialConfig {
   std::string name;
   std::string source;              // literature source of the values
   std::optional<FungParameters> fung;
+  std::optional<HgoParameters> hgo;
   std::optional<BilinearParameters> bilinear_given;  // used as is by the mass-spring model
-  BilinearFitOptions fit;          // used when the bilinear curves are fitted from Fung
+  BilinearFitOptions fit;          // used when the bilinear curves are fitted from the law
   std::optional<double> thickness; // mm
   std::optional<double> density;   // g/mm³
 
-  /// The bilinear curves for the mass-spring model (given, or fitted from the Fung law).
+  /// The bilinear curves for the mass-spring model (given, or fitted from the law).
   BilinearParameters bilinear() const;
-  std::shared_ptr<const MaterialLaw> law() const;  // throws if no Fung law is given
+  std::shared_ptr<const MaterialLaw> law() const;  // throws if only bilinear curves are given
 };
 
 /// Parses a material object (inline in a scene or a preset file).
