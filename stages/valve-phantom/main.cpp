@@ -14,7 +14,9 @@
 // --noise grey values). TTV's defaults: 0.65 mm leaflet thickness (the deck's shell
 // section) and 0.65 mm chordae (its truss sections, 0.27-0.36 mm²).
 // Writes DIR/NAME.nrrd (or .mha, .nii.gz, a DICOM directory), the ground-truth mid-surface
-// DIR/NAME.truth.vtp, the chordae DIR/NAME.chordae.json (mitral) and phantom.summary.json.
+// DIR/NAME.truth.vtp (TTV: with the deck's element fiber directions), the chordae
+// DIR/NAME.chordae.json (mitral: the phantom's; TTV: the deck's trusses, papillary tips = held
+// truss nodes, see truss_chordae) and phantom.summary.json.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cstdio>
@@ -95,7 +97,7 @@ Vec3 atrial_direction(const TriMesh& leaflets) {
   return atrial;
 }
 
-PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
+PhantomGeometry model_geometry(StageArguments& args, bool chordae, std::optional<ChordaeNetwork>* network) {
   const std::string inp = args.text("inp", "");
   if (inp.empty()) throw InputError("valve-phantom ttv: --inp: expected the Abaqus model (.inp), found nothing");
   const std::string frame = args.text("frame", "");
@@ -108,8 +110,11 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
     model.points = x;
   }
   PhantomGeometry g;
-  g.leaflets = shell_mesh(model, "Annular_Nodes", "Free_Edge_Nodes");
+  std::vector<int> model_rows;
+  g.leaflets = shell_mesh(model, "Annular_Nodes", "Free_Edge_Nodes", &model_rows);
   g.thickness = args.length_mm("thickness", 0.65, 0.05, 10);
+  double tip_motion = 0;
+  if (chordae && !line_elements(model).empty()) *network = truss_chordae(model, model_rows, g.leaflets, &tip_motion);
   g.chord_diameter = args.length_mm("chord-diameter", 0.65, 0.05, 5);
   const auto lines = line_elements(model);
   if (chordae)
@@ -124,6 +129,16 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae) {
                    {"annulus_nodes", annulus},
                    {"free_edge_nodes", free_edge},
                    {"chordae", {{"segments", chordae ? int(lines.size()) : 0}}}};
+  if (*network) {
+    const ChordaeNetwork& net = **network;
+    g.description["chordae"]["papillary_tips"] = net.count(ChordPointKind::papillary_tip);
+    g.description["chordae"]["branch_points"] = net.count(ChordPointKind::branch);
+    g.description["chordae"]["insertions"] = net.count(ChordPointKind::insertion);
+    g.description["chordae"]["primary"] = net.count(ChordType::primary);
+    g.description["chordae"]["secondary"] = net.count(ChordType::secondary);
+    g.description["chordae"]["diameter_mm"] = net.diameter;
+    g.description["chordae"]["papillary_tip_motion_not_applied_mm"] = tip_motion;
+  }
   return g;
 }
 
@@ -179,7 +194,7 @@ int main(int argc, char** argv) {
 
     std::optional<ChordaeNetwork> network;
     const PhantomGeometry ph = kind == "mitral" ? mitral_geometry(args, spacing, seed, chordae, &network)
-                               : kind == "ttv"  ? model_geometry(args, chordae)
+                               : kind == "ttv"  ? model_geometry(args, chordae, &network)
                                                 : surface_geometry(args);
     Vec3 lo = ph.leaflets.points.colwise().minCoeff().transpose(), hi = ph.leaflets.points.colwise().maxCoeff().transpose();
     for (const auto& [a, b] : ph.chord_segments) lo = lo.cwiseMin(a).cwiseMin(b), hi = hi.cwiseMax(a).cwiseMax(b);

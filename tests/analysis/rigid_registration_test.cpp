@@ -74,6 +74,30 @@ TEST_CASE("annulus targets: a ring contracted by 10 % moves each node 10 % towar
   CHECK(b.registration.rotation_angle_deg() == Approx(0.2 * 180 / M_PI).margin(0.5));
 }
 
+TEST_CASE("annulus targets by node: each annulus node goes where the same node of the closed mesh is", "[analysis]") {
+  const TriMesh open = ring_mesh(60);
+  TriMesh closed = open;
+  // A non-rigid motion: every node moves by its own amount, which no ring mapping would find.
+  for (int i = 0; i < closed.num_nodes(); ++i) closed.points.row(i) += Vec3(0.01 * i, -0.02 * (i % 7), 0.5).transpose();
+  const AnnulusTargets a = annulus_targets_by_node(open, closed, false, "open.vtp", "closed.vtp");
+  REQUIRE(a.nodes.size() == 60);  // the fixed ring; the inner ring is free
+  double worst = 0;
+  for (std::size_t k = 0; k < a.nodes.size(); ++k) worst = std::max(worst, (a.targets.row(k) - closed.points.row(a.nodes[k])).norm());
+  CHECK(worst == 0.0);
+  CHECK(a.max_motion_mm > 0.5);
+  CHECK(a.open_length_mm > 0);
+  // With registration, a purely rigid motion of the closed mesh leaves the annulus in place.
+  TriMesh moved = open;
+  const Mat3 R = Eigen::AngleAxisd(0.3, Vec3(1, 1, 0).normalized()).toRotationMatrix();
+  for (int i = 0; i < moved.num_nodes(); ++i) moved.points.row(i) = (R * open.points.row(i).transpose() + Vec3(3, 1, -2)).transpose();
+  const AnnulusTargets b = annulus_targets_by_node(open, moved, true, "open.vtp", "closed.vtp");
+  CHECK(b.max_motion_mm < 1e-9);
+  CHECK(b.registration.rotation_angle_deg() == Approx(0.3 * 180 / M_PI).epsilon(1e-9));
+  // Another mesh is an error naming the closed file.
+  CHECK_THROWS_WITH(annulus_targets_by_node(open, ring_mesh(50), false, "open.vtp", "closed.vtp"),
+                    Catch::Contains("closed.vtp") && Catch::Contains("nodes"));
+}
+
 TEST_CASE("a closed mesh without an annulus is an error naming the file", "[analysis]") {
   const TriMesh open = ring_mesh(40);
   TriMesh closed = ring_mesh(40);

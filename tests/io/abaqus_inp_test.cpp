@@ -37,6 +37,19 @@ TEST_CASE("an Abaqus deck gives nodes, shells as triangles, trusses and node set
   CHECK(fixed == 3);
   CHECK(free_edge == 3);
 
+  // Element 2's distribution vector (0, 1, 0.5) projected onto its plane z = 0 is +y; element 1
+  // has none and keeps the default (its first edge, +x).
+  CHECK(mesh.fiber.row(2).y() == Approx(1.0));
+  CHECK(mesh.fiber.row(3).y() == Approx(1.0));
+  CHECK(mesh.fiber.row(0).x() == Approx(1.0));
+  REQUIRE(m.section_areas.size() == 1);
+  CHECK(m.section_areas[0] == 0.25);
+  REQUIRE(m.boundary.size() == 2);
+  CHECK(m.boundary.at(1).dof_mask == 7);
+  CHECK(m.boundary.at(1).displacement == Vec3(0.5, -0.25, 0.125));
+  CHECK(m.boundary.at(10).dof_mask == 7);
+  CHECK(m.boundary.at(10).displacement == Vec3::Zero());
+
   const auto lines = line_elements(m);
   REQUIRE(lines.size() == 1);
   CHECK(m.node_ids[lines[0].first] == 10);

@@ -1,5 +1,6 @@
 #include "valve/analysis/annulus_targets.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 
@@ -111,6 +112,43 @@ AnnulusTargets annulus_targets(const TriMesh& open, const TriMesh& closed, bool 
     const double d = (out.targets.row(i) - open_curve.p.row(i)).norm();
     out.mean_motion_mm += d / n;
     out.max_motion_mm = std::max(out.max_motion_mm, d);
+  }
+  return out;
+}
+
+AnnulusTargets annulus_targets_by_node(const TriMesh& open, const TriMesh& closed, bool register_rigidly,
+                                       const std::string& open_file, const std::string& closed_file) {
+  if (closed.num_nodes() != open.num_nodes())
+    throw_input_error(closed_file, "points", "the open mesh's " + std::to_string(open.num_nodes()) + " nodes (correspondence: nodes)",
+                      std::to_string(closed.num_nodes()) + " nodes");
+  AnnulusTargets out;
+  for (int i = 0; i < open.num_nodes(); ++i)
+    if (marked(open, i)) out.nodes.push_back(i);
+  if (out.nodes.size() < 3)
+    throw_input_error(open_file, "NodeRole", "an annulus: fixed or attached nodes", std::to_string(out.nodes.size()) + " such nodes");
+  const MatX3 open_points = ring_points(open, out.nodes);
+  out.targets = ring_points(closed, out.nodes);
+  if (register_rigidly) {
+    const Eigen::Matrix4d T = Eigen::umeyama(out.targets.transpose(), open_points.transpose(), false);
+    out.registration.rotation = T.topLeftCorner<3, 3>();
+    out.registration.translation = T.topRightCorner<3, 1>();
+    out.targets = out.registration.apply(out.targets);
+    out.ring_rms_mm = std::sqrt((out.targets - open_points).rowwise().squaredNorm().mean());
+  }
+  const int n = static_cast<int>(out.nodes.size());
+  for (int i = 0; i < n; ++i) {
+    const double d = (out.targets.row(i) - open_points.row(i)).norm();
+    out.mean_motion_mm += d / n;
+    out.max_motion_mm = std::max(out.max_motion_mm, d);
+  }
+  // Lengths along the annulus loop, where the marked nodes form one.
+  if (const std::vector<int> ring = annulus_ring(open); ring.size() >= 3) {
+    std::vector<int> row_of(open.num_nodes(), -1);
+    for (int k = 0; k < n; ++k) row_of[out.nodes[k]] = k;
+    MatX3 closed_ring(static_cast<int>(ring.size()), 3);
+    for (std::size_t k = 0; k < ring.size(); ++k) closed_ring.row(k) = out.targets.row(row_of[ring[k]]);
+    out.open_length_mm = Ring(ring_points(open, ring)).length;
+    out.closed_length_mm = Ring(closed_ring).length;
   }
   return out;
 }

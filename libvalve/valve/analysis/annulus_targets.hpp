@@ -34,4 +34,12 @@ struct AnnulusTargets {
 AnnulusTargets annulus_targets(const TriMesh& open, const TriMesh& closed, bool register_rigidly,
                                const std::string& open_file, const std::string& closed_file);
 
+/// The same by node correspondence, for two states of one mesh (a model's open and closed
+/// frames, same node numbering): every fixed or attached node of the open mesh goes to the
+/// position of the same node in the closed mesh, after an optional rigid fit of the closed
+/// annulus nodes onto the open ones (Umeyama, no scaling). Throws InputError naming
+/// `closed_file` when the node counts differ, `open_file` when there is no annulus.
+AnnulusTargets annulus_targets_by_node(const TriMesh& open, const TriMesh& closed, bool register_rigidly,
+                                       const std::string& open_file, const std::string& closed_file);
+
 }  // namespace valve

@@ -217,6 +217,9 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     AnnulusMotionConfig ac;
     ac.closed_mesh = resolve(base_dir, a.string("closed_mesh"));
     ac.register_rigidly = a.boolean("register", true);
+    ac.correspondence = a.choice("correspondence", {"arc_length", "nodes"}, std::string("arc_length")) == "nodes"
+                            ? AnnulusMotionConfig::Correspondence::nodes
+                            : AnnulusMotionConfig::Correspondence::arc_length;
     r.record("annulus_motion", a.finish());
     sc.annulus_motion = ac;
   }

@@ -92,6 +92,10 @@ struct ChordaeConfig {
 struct AnnulusMotionConfig {
   std::filesystem::path closed_mesh;
   bool register_rigidly = true;
+  /// How open annulus nodes find their closed positions: by arc-length fraction along the
+  /// registered closed ring (seed 5.2.2; meshes of different scans), or the same node of the
+  /// closed mesh (two states of one model, e.g. Texas TriValve frames 0 and 20).
+  enum class Correspondence { arc_length, nodes } correspondence = Correspondence::arc_length;
 };
 /// A material (and thickness) for some leaflets, overriding the scene's.
 struct LeafletMaterialConfig {

@@ -53,7 +53,7 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
   if (!in) throw_input_error(path.string(), "", "a readable Abaqus .inp file", "nothing there");
   AbaqusModel m;
   std::vector<Vec3> points;
-  enum class Block { none, node, element, nset } block = Block::none;
+  enum class Block { none, node, element, nset, distribution, solid_section, boundary } block = Block::none;
   std::string nset;
   bool generate = false;
   std::string line;
@@ -76,10 +76,10 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
     try {
       std::size_t used = 0;
       const double v = std::stod(s, &used);
-      if (used != s.size() || !std::isfinite(v)) fail("finite node coordinates");
+      if (used != s.size() || !std::isfinite(v)) fail("finite numbers");
       return v;
     } catch (const std::logic_error&) {
-      fail("finite node coordinates");
+      fail("finite numbers");
     }
     return 0.0;
   };
@@ -104,6 +104,12 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
         nset = upper(parameter(words, "NSET"));
         generate = has_word(words, "GENERATE");
         m.node_sets[nset];
+      } else if (keyword == "*DISTRIBUTION" && upper(parameter(words, "LOCATION")) == "ELEMENT") {
+        block = Block::distribution;
+      } else if (keyword == "*SOLID SECTION") {
+        block = Block::solid_section;
+      } else if (keyword == "*BOUNDARY") {
+        block = Block::boundary;
       }
       continue;
     }
@@ -122,6 +128,24 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       std::vector<int> nodes;
       for (std::size_t i = 1; i < f.size(); ++i) nodes.push_back(to_int(f[i]));
       b.nodes.push_back(std::move(nodes));
+    } else if (block == Block::distribution) {
+      if (!f.empty() && f[0].empty()) continue;  // ", a, b": the default, for elements not listed
+      if (f.size() < 4) fail("a distribution line: element id, a1, a2, a3[, b1, b2, b3]");
+      m.element_direction[to_int(f[0])] = Vec3(to_double(f[1]), to_double(f[2]), to_double(f[3]));
+    } else if (block == Block::solid_section) {
+      if (!f.empty() && !f[0].empty()) m.section_areas.push_back(to_double(f[0]));
+      block = Block::none;  // one data line
+    } else if (block == Block::boundary) {
+      // "node, first dof[, last dof[, value]]" with node an id or Instance.id; named types
+      // (ENCASTRE, PINNED) and node-set names are not used by the decks we read.
+      if (f.size() < 2) fail("a boundary line: node, first dof[, last dof[, value]]");
+      const auto dot = f[0].rfind('.');
+      const int id = to_int(dot == std::string::npos ? f[0] : f[0].substr(dot + 1));
+      const int first = to_int(f[1]), last = f.size() > 2 && !f[2].empty() ? to_int(f[2]) : first;
+      const double value = f.size() > 3 ? to_double(f[3]) : 0.0;
+      if (first < 1 || last > 3 || first > last) fail("translational dofs 1..3");
+      auto& b = m.boundary[id];
+      for (int k = first; k <= last; ++k) b.displacement[k - 1] = value, b.dof_mask |= 1 << (k - 1);
     } else if (block == Block::nset) {
       auto& set = m.node_sets[nset];
       if (generate) {
@@ -150,6 +174,7 @@ TriMesh shell_mesh(const AbaqusModel& model, const std::string& annulus_set, con
   TriMesh mesh;
   std::vector<int> index(model.points.rows(), -1), rows;
   std::vector<int> leaflet_of_triangle;
+  std::vector<const Vec3*> direction_of_triangle;  // the element's *Distribution vector, if any
   auto node = [&](int id) {
     const int row = model.row_of_node.at(id);
     if (index[row] < 0) index[row] = static_cast<int>(rows.size()), rows.push_back(row);
@@ -158,7 +183,12 @@ TriMesh shell_mesh(const AbaqusModel& model, const std::string& annulus_set, con
   int leaflet = 0;
   for (const auto& b : model.blocks) {
     if (b.type.empty() || b.type[0] != 'S') continue;
-    for (const auto& e : b.nodes) {
+    for (std::size_t k = 0; k < b.nodes.size(); ++k) {
+      const auto& e = b.nodes[k];
+      const auto dir = model.element_direction.find(b.ids[k]);
+      const Vec3* direction = dir == model.element_direction.end() ? nullptr : &dir->second;
+      if (e.size() == 3) direction_of_triangle.push_back(direction);
+      if (e.size() == 4) direction_of_triangle.insert(direction_of_triangle.end(), 2, direction);
       if (e.size() == 3) {
         mesh.triangles.push_back({node(e[0]), node(e[1]), node(e[2])});
         leaflet_of_triangle.push_back(leaflet);
@@ -183,6 +213,13 @@ TriMesh shell_mesh(const AbaqusModel& model, const std::string& annulus_set, con
   for (std::size_t i = 0; i < rows.size(); ++i) mesh.points.row(static_cast<Eigen::Index>(i)) = model.points.row(rows[i]);
   mesh.fill_defaults();
   mesh.leaflet = leaflet_of_triangle;
+  // Abaqus projects a shell's local 1-direction onto the shell surface.
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    if (!direction_of_triangle[t]) continue;
+    const Vec3 n = triangle_normal(mesh.points, mesh.triangles[t]);
+    const Vec3 a = *direction_of_triangle[t] - direction_of_triangle[t]->dot(n) * n;
+    if (a.norm() > 1e-6 * direction_of_triangle[t]->norm()) mesh.fiber.row(t) = a.normalized().transpose();
+  }
   auto mark = [&](const std::string& set, auto apply) {
     const auto it = model.node_sets.find(upper(set));
     if (it == model.node_sets.end()) return;
@@ -206,6 +243,51 @@ std::vector<std::pair<int, int>> line_elements(const AbaqusModel& model) {
     if (b.type == "T3D2" || b.type == "B31" || b.type == "T3D3")
       for (const auto& e : b.nodes) out.emplace_back(model.row_of_node.at(e.front()), model.row_of_node.at(e.back()));
   return out;
+}
+
+ChordaeNetwork truss_chordae(const AbaqusModel& model, const std::vector<int>& model_rows, const TriMesh& leaflets,
+                             double* max_tip_motion_mm) {
+  std::vector<int> mesh_node(model.points.rows(), -1), point_of_row(model.points.rows(), -1);
+  for (std::size_t i = 0; i < model_rows.size(); ++i) mesh_node[model_rows[i]] = static_cast<int>(i);
+  ChordaeNetwork net;
+  double tip_motion = 0;
+  auto point = [&](int row) {
+    if (point_of_row[row] >= 0) return point_of_row[row];
+    ChordPoint p;
+    p.position = model.points.row(row).transpose();
+    const int id = model.node_ids[row];
+    p.name = "node " + std::to_string(id);
+    const auto held = model.boundary.find(id);
+    if (mesh_node[row] >= 0) {
+      p.kind = ChordPointKind::insertion;
+      p.mesh_node = mesh_node[row];
+    } else if (held != model.boundary.end() && held->second.dof_mask == 7) {
+      p.kind = ChordPointKind::papillary_tip;
+      tip_motion = std::max(tip_motion, held->second.displacement.norm());
+    } else {
+      p.kind = ChordPointKind::branch;
+    }
+    point_of_row[row] = static_cast<int>(net.points.size());
+    net.points.push_back(p);
+    return point_of_row[row];
+  };
+  auto on_free_edge = [&](int p) {
+    return net.points[p].kind == ChordPointKind::insertion && leaflets.boundary[net.points[p].mesh_node] == BoundaryType::free_edge;
+  };
+  for (const auto& [a, b] : line_elements(model)) {
+    ChordSegment seg;
+    seg.from = point(a);
+    seg.to = point(b);
+    seg.type = on_free_edge(seg.from) || on_free_edge(seg.to) ? ChordType::primary : ChordType::secondary;
+    net.segments.push_back(seg);
+  }
+  if (!model.section_areas.empty()) {
+    double mean_area = 0;
+    for (double a : model.section_areas) mean_area += a / model.section_areas.size();
+    net.diameter = std::sqrt(4 * mean_area / M_PI);
+  }
+  if (max_tip_motion_mm) *max_tip_motion_mm = tip_motion;
+  return net;
 }
 
 }  // namespace valve

@@ -62,8 +62,11 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
   model.leaflet_nodes = leaflets.num_nodes();
   if (sc.annulus_motion) {
     if (!closed) throw Error("prepare_scene_model: the scene moves the annulus but no closed mesh was given");
-    model.annulus = annulus_targets(leaflets, *closed, sc.annulus_motion->register_rigidly, sc.mesh_path.string(),
-                                    sc.annulus_motion->closed_mesh.string());
+    const auto targets = sc.annulus_motion->correspondence == AnnulusMotionConfig::Correspondence::nodes
+                             ? annulus_targets_by_node
+                             : annulus_targets;
+    model.annulus = targets(leaflets, *closed, sc.annulus_motion->register_rigidly, sc.mesh_path.string(),
+                            sc.annulus_motion->closed_mesh.string());
     const MatX3& start = leaflets.start_positions();
     MatX3 disp(static_cast<int>(model.annulus->nodes.size()), 3);
     for (std::size_t k = 0; k < model.annulus->nodes.size(); ++k)
