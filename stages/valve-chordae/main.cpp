@@ -1,5 +1,6 @@
-// valve-chordae --mesh LEAFLETS.vtp (--from CHORDAE.json | --markups CURVE.mrk.json ...) --out DIR
-//               [--snap-tolerance 1.5] [--merge-distance 0.3] [--scale SEGMENT=FACTOR ...]
+// valve-chordae --mesh LEAFLETS.vtp (--from CHORDAE.json | --markups CURVE.mrk.json ... |
+//               --labels LABELS.nrrd) --out DIR [--snap-tolerance 1.5] [--merge-distance 0.3]
+//               [--insertion-distance 1] [--min-spur 0.75] [--scale SEGMENT=FACTOR ...]
 //               [--name chordae] [--quiet]
 // Puts a chordae network on a leaflet mesh (seed 5.2.2): every insertion is snapped to the
 // nearest mesh node (an insertion farther than --snap-tolerance mm is an error naming the
@@ -9,7 +10,10 @@
 // free edge are primary, the others secondary, curves named "strut" struts.
 // Writes DIR/chordae.json (the form valve-simulate's chordae.file reads), DIR/chordae.vtp
 // (lines for ParaView) and DIR/chordae.summary.json.
-// Not here: chordae extracted from the segmentation (Debian's ITK 5.2 has no 3-D thinning).
+// From a segmentation (valve-segment's labels.nrrd) the chordae label is thinned to curves and
+// read as a graph (chordae/chordae_extraction.hpp): ends within --insertion-distance mm of
+// leaflet tissue are insertions, other ends papillary tips, branches shorter than --min-spur
+// mm thinning noise; chords are typed by where their insertions land, as for markups.
 #include <cstdio>
 #include <filesystem>
 
@@ -20,7 +24,9 @@
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/stage_arguments.hpp"
+#include "valve/chordae/chordae_extraction.hpp"
 #include "valve/io/chordae_io.hpp"
+#include "valve/io/image_io.hpp"
 #include "valve/io/mesh_io.hpp"
 
 using namespace valve;
@@ -28,8 +34,11 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   return run_stage("valve-chordae", [&] {
-    const std::vector<std::string> keys{"mesh", "from", "markups", "snap-tolerance", "merge-distance", "scale", "name"};
-    CommandLine cl(argc, argv, {"out", "config", "mesh", "from", "markups", "snap-tolerance", "merge-distance", "scale", "name"},
+    const std::vector<std::string> keys{"mesh", "from", "markups", "labels", "snap-tolerance", "merge-distance",
+                                        "insertion-distance", "min-spur", "scale", "name"};
+    CommandLine cl(argc, argv,
+                   {"out", "config", "mesh", "from", "markups", "labels", "snap-tolerance", "merge-distance", "insertion-distance",
+                    "min-spur", "scale", "name"},
                    {"quiet"});
     const fs::path out = cl.require("out");
     StageArguments args(cl, keys);
@@ -37,20 +46,29 @@ int main(int argc, char** argv) {
     if (mesh_file.empty()) throw InputError("valve-chordae: --mesh: expected the leaflet mesh (.vtp), found nothing");
     const std::string from = args.text("from", "");
     const std::vector<std::string> markups = cl.get_all("markups");
-    if (from.empty() == markups.empty())
-      throw InputError("valve-chordae: expected exactly one source, --from CHORDAE.json or --markups CURVE.mrk.json, found " +
-                       std::string(from.empty() ? "neither" : "both"));
+    const std::string labels = args.text("labels", "");
+    const int sources = !from.empty() + !markups.empty() + !labels.empty();
+    if (sources != 1)
+      throw InputError("valve-chordae: expected exactly one source, --from CHORDAE.json, --markups CURVE.mrk.json or --labels "
+                       "LABELS.nrrd, found " + std::to_string(sources));
+    ChordaeExtractionOptions extraction;
+    extraction.insertion_distance_mm = args.length_mm("insertion-distance", extraction.insertion_distance_mm, 0, 20);
+    extraction.min_spur_mm = args.length_mm("min-spur", extraction.min_spur_mm, 0, 20);
     const double tolerance = args.length_mm("snap-tolerance", 1.5, 0, 100);
     const double merge = args.length_mm("merge-distance", 0.3, 0, 10);
     const std::string name = args.text("name", "chordae");
 
     const TriMesh mesh = read_mesh(mesh_file);
     ChordaeNetwork net;
+    ChordaeExtractionSummary extracted;
     std::string source;
     if (!from.empty()) {
       net = read_chordae_json(load_json_file(from), from);
       for (ChordPoint& p : net.points) p.mesh_node = -1;  // snapped to this mesh, whatever they were
       source = from;
+    } else if (!labels.empty()) {
+      net = chordae_from_labels(read_label_map(labels), extraction, labels, &extracted);
+      source = labels;
     } else {
       std::vector<fs::path> files(markups.begin(), markups.end());
       net = read_slicer_curves(files, merge);
@@ -58,7 +76,7 @@ int main(int argc, char** argv) {
     }
     // Snap first (positions become mesh nodes), then the checks of a chordae.json.
     snap_insertions(net, mesh.points, tolerance, source);
-    if (!markups.empty()) classify_by_insertion(net, mesh);
+    if (from.empty()) classify_by_insertion(net, mesh);
     net = read_chordae_json(to_json(net), source);
     for (const std::string& s : cl.get_all("scale")) {
       const auto eq = s.find('=');
@@ -98,6 +116,14 @@ int main(int argc, char** argv) {
                          {"insertions", net.count(ChordPointKind::insertion)},
                          {"total_rest_length_mm", total},
                          {"longest_segment_mm", longest}};
+    if (!labels.empty())
+      summary.metrics()["extraction"] = {{"chordae_voxels", extracted.chordae_voxels},
+                                         {"skeleton_voxels", extracted.skeleton_voxels},
+                                         {"junctions", extracted.junctions},
+                                         {"spurs_removed", extracted.spurs_removed},
+                                         {"components", extracted.components},
+                                         {"components_dropped", extracted.components_dropped},
+                                         {"tips_on_other_tissue", extracted.tips_on_other_tissue}};
     summary.write();
     if (!cl.has("quiet"))
       std::printf("valve-chordae: %zu segments (%d primary, %d secondary, %d strut), %d insertions on %s -> %s\n",

@@ -1,0 +1,80 @@
+// Chordae from a label map made by hand: a leaflet slab above, a papillary block below, and a
+// chord that rises from the papillary block and splits into two branches that reach the
+// slab. Every expected figure follows from the drawing.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "valve/chordae/chordae_extraction.hpp"
+#include "valve/core/error.hpp"
+
+using namespace valve;
+
+namespace {
+
+void paint_tube(LabelMap& m, const Vec3& a, const Vec3& b, double radius, std::uint8_t label) {
+  const ImageGeometry& g = m.geometry;
+  for (int k = 0; k < g.size[2]; ++k)
+    for (int j = 0; j < g.size[1]; ++j)
+      for (int i = 0; i < g.size[0]; ++i) {
+        const Vec3 p = g.physical_point(Vec3(i, j, k)), d = b - a;
+        const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+        if ((a + t * d - p).norm() <= radius && m.labels[g.linear_index(i, j, k)] == label_background)
+          m.labels[g.linear_index(i, j, k)] = label;
+      }
+}
+
+// 0.2 mm voxels over 12 × 6 × 16 mm; leaflet slab z in [14, 15] mm, papillary block z in [0, 2] mm.
+LabelMap drawing() {
+  LabelMap m;
+  m.geometry.size = {60, 30, 80};
+  m.geometry.spacing = Vec3::Constant(0.2);
+  m.labels.assign(m.geometry.voxel_count(), label_background);
+  const ImageGeometry& g = m.geometry;
+  for (int k = 0; k < g.size[2]; ++k)
+    for (int j = 0; j < g.size[1]; ++j)
+      for (int i = 0; i < g.size[0]; ++i) {
+        const double z = k * 0.2;
+        if (z >= 14 && z <= 15) m.labels[g.linear_index(i, j, k)] = label_leaflet;
+        if (z <= 2 && i * 0.2 >= 4 && i * 0.2 <= 8) m.labels[g.linear_index(i, j, k)] = label_other_tissue;
+      }
+  // Trunk from the papillary block to a branch point at (6, 3, 8), two branches to the slab;
+  // the segmentation's opening leaves each chord ~0.4 mm short of the tissue it joins.
+  paint_tube(m, Vec3(6, 3, 2.4), Vec3(6, 3, 8), 0.35, label_chordae);
+  paint_tube(m, Vec3(6, 3, 8), Vec3(2.5, 3, 13.6), 0.35, label_chordae);
+  paint_tube(m, Vec3(6, 3, 8), Vec3(9.5, 3, 13.6), 0.35, label_chordae);
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("chordae from labels: a branching chord between papillary tissue and a leaflet", "[chordae][extraction]") {
+  ChordaeExtractionSummary s;
+  const ChordaeNetwork net = chordae_from_labels(drawing(), {}, "labels.nrrd", &s);
+  CHECK(s.insertions == 2);
+  CHECK(s.papillary_tips == 1);
+  CHECK(s.tips_on_other_tissue == 1);
+  CHECK(s.components_dropped == 0);
+  REQUIRE(net.segments.size() == 3);
+  REQUIRE(net.count(ChordPointKind::branch) == 1);
+  for (const ChordPoint& p : net.points) {
+    if (p.kind == ChordPointKind::branch) CHECK((p.position - Vec3(6, 3, 8)).norm() < 0.6);
+    if (p.kind == ChordPointKind::papillary_tip) CHECK((p.position - Vec3(6, 3, 2.4)).norm() < 0.6);
+    if (p.kind == ChordPointKind::insertion) CHECK(p.position.z() > 13.0);
+  }
+  // Drawn lengths: trunk 5.6 mm, branches |(3.5, 0, 5.6)| = 6.6 mm each; thinning may shorten
+  // each end by up to a chord radius.
+  CHECK(s.total_length_mm == Approx(5.6 + 2 * std::hypot(3.5, 5.6)).margin(1.2));
+  // Segments run from the tip side toward the insertions.
+  for (const ChordSegment& seg : net.segments) CHECK(net.points[seg.to].kind != ChordPointKind::papillary_tip);
+}
+
+TEST_CASE("chordae from labels: no chordae, or none reaching a leaflet, is an error naming the file", "[chordae][extraction]") {
+  LabelMap empty = drawing();
+  for (auto& l : empty.labels)
+    if (l == label_chordae) l = label_background;
+  CHECK_THROWS_WITH(chordae_from_labels(empty, {}, "labels.nrrd"), Catch::Contains("labels.nrrd") && Catch::Contains("chordae"));
+  LabelMap floating = drawing();
+  for (auto& l : floating.labels)
+    if (l == label_leaflet) l = label_background;
+  CHECK_THROWS_AS(chordae_from_labels(floating, {}, "labels.nrrd"), InputError);
+}
