@@ -201,6 +201,7 @@ int main(int argc, char** argv) {
                        {"midline_band_top_mm", l.midline_band_top_mm}, {"min_height_mm", l.min_height_mm}, {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
                        {"closed", l.closed}});
       summary.metrics()["coaptation"] = {{"closed", coaptation->closed}, {"central_gap", coaptation->central_gap},
+                                         {"min_height_mm", coaptation->min_height_mm},
                                          {"threshold_mm", CoaptationOptions{}.threshold_mm},
                                          {"free_edge_offset_mm", CoaptationOptions{}.free_edge_offset_mm}, {"leaflets", per}};
     }

@@ -121,6 +121,7 @@ void check_overlap_pair(const CoaptationResult& r) {
   CHECK(l0.min_height_mm == Approx(lower_height).margin(1e-9));  // corners lie in the 1 mm margins
   CHECK(l1.midline_height_mm == Approx(upper_depth).margin(1e-9));
   CHECK(l1.min_height_mm == Approx(upper_depth).margin(1e-9));
+  CHECK(r.min_height_mm == Approx(std::min(lower_height, upper_depth)).margin(1e-9));  // the valve's: the lesser
   CHECK(l0.coapting_fraction_of_free_edge == Approx(0.9));  // x in [0.5, 9.5] of [0, 10]
   CHECK(l1.coapting_fraction_of_free_edge == Approx(1.0));
   CHECK(l0.closed);

@@ -273,6 +273,8 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
   }
   r.closed = !r.leaflets.empty() &&
              std::all_of(r.leaflets.begin(), r.leaflets.end(), [](const LeafletCoaptation& l) { return l.closed; });
+  for (std::size_t k = 0; k < r.leaflets.size(); ++k)
+    r.min_height_mm = k == 0 ? r.leaflets[k].min_height_mm : std::min(r.min_height_mm, r.leaflets[k].min_height_mm);
   return r;
 }
 

@@ -94,6 +94,7 @@ struct CoaptationResult {
   std::vector<LeafletCoaptation> leaflets;  // one per leaflet id present, ascending
   bool closed = false;       // every leaflet closed (false for a mesh with one leaflet)
   bool central_gap = false;  // some leaflet's free-edge middle node does not coapt
+  double min_height_mm = 0;  // smallest min_height_mm of the leaflets (0 without leaflets)
   /// One line: closed / central gap and per leaflet area, midline and minimum height.
   std::string report() const;
 };
