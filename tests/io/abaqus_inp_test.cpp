@@ -44,7 +44,13 @@ TEST_CASE("an Abaqus deck gives nodes, shells as triangles, trusses and node set
   CHECK(mesh.fiber.row(0).x() == Approx(1.0));
   REQUIRE(m.section_areas.size() == 1);
   CHECK(m.section_areas[0] == 0.25);
-  REQUIRE(m.boundary.size() == 2);
+  // Nodes 4-6 by their set (ENCASTRE), node 2's symmetry condition and node 3's rotations
+  // hold no full translation and are not recorded.
+  REQUIRE(m.boundary.size() == 6);
+  for (int id : {4, 5, 6}) CHECK(m.boundary.at(id).dof_mask == 7);
+  CHECK(m.boundary.at(4).displacement == Vec3::Zero());
+  CHECK(m.boundary.count(2) == 0);
+  CHECK(m.boundary.at(3).dof_mask == 0);
   CHECK(m.boundary.at(1).dof_mask == 7);
   CHECK(m.boundary.at(1).displacement == Vec3(0.5, -0.25, 0.125));
   CHECK(m.boundary.at(10).dof_mask == 7);

@@ -136,16 +136,34 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       if (!f.empty() && !f[0].empty()) m.section_areas.push_back(to_double(f[0]));
       block = Block::none;  // one data line
     } else if (block == Block::boundary) {
-      // "node, first dof[, last dof[, value]]" with node an id or Instance.id; named types
-      // (ENCASTRE, PINNED) and node-set names are not used by the decks we read.
+      // "node, first dof[, last dof[, value]]" or "node, ENCASTRE|PINNED"; node is an id, a
+      // node set, or either prefixed by "Instance.". Rotations (dofs 4-6) and other named
+      // types (symmetry conditions) hold no full translation and are not recorded.
       if (f.size() < 2) fail("a boundary line: node, first dof[, last dof[, value]]");
       const auto dot = f[0].rfind('.');
-      const int id = to_int(dot == std::string::npos ? f[0] : f[0].substr(dot + 1));
-      const int first = to_int(f[1]), last = f.size() > 2 && !f[2].empty() ? to_int(f[2]) : first;
-      const double value = f.size() > 3 ? to_double(f[3]) : 0.0;
-      if (first < 1 || last > 3 || first > last) fail("translational dofs 1..3");
-      auto& b = m.boundary[id];
-      for (int k = first; k <= last; ++k) b.displacement[k - 1] = value, b.dof_mask |= 1 << (k - 1);
+      const std::string ref = dot == std::string::npos ? f[0] : f[0].substr(dot + 1);
+      std::vector<int> ids;
+      if (!ref.empty() && std::all_of(ref.begin(), ref.end(), [](unsigned char c) { return std::isdigit(c); })) {
+        ids.push_back(to_int(ref));
+      } else if (const auto set = m.node_sets.find(upper(ref)); set != m.node_sets.end()) {
+        ids = set->second;
+      } else {
+        fail("a node id or a node set defined before the *Boundary");
+      }
+      int first = 1, last = 3;
+      double value = 0.0;
+      const std::string type = upper(f[1]);
+      if (type != "ENCASTRE" && type != "PINNED") {
+        if (!std::isdigit(static_cast<unsigned char>(f[1].empty() ? 'x' : f[1][0]))) continue;  // XSYMM etc.
+        first = to_int(f[1]);
+        last = f.size() > 2 && !f[2].empty() ? to_int(f[2]) : first;
+        value = f.size() > 3 ? to_double(f[3]) : 0.0;
+        if (first < 1 || first > last) fail("dofs first <= last, from 1");
+      }
+      for (int id : ids) {
+        auto& b = m.boundary[id];
+        for (int k = first; k <= std::min(last, 3); ++k) b.displacement[k - 1] = value, b.dof_mask |= 1 << (k - 1);
+      }
     } else if (block == Block::nset) {
       auto& set = m.node_sets[nset];
       if (generate) {
