@@ -65,4 +65,7 @@ TEST_CASE("an Abaqus deck gives nodes, shells as triangles, trusses and node set
 TEST_CASE("a broken deck names the file and line", "[io][abaqus]") {
   CHECK_THROWS_WITH(read_abaqus_inp(VALVE_TEST_DATA_DIR "/no_such.inp"), Catch::Contains("no_such.inp"));
   CHECK_THROWS_WITH(read_abaqus_inp(VALVE_TEST_DATA_DIR "/bad_node.inp"), Catch::Contains("line 3"));
+  // A *Boundary on a node set the deck never defines.
+  CHECK_THROWS_WITH(read_abaqus_inp(VALVE_TEST_DATA_DIR "/bad_boundary.inp"),
+                    Catch::Contains("line 4") && Catch::Contains("node set"));
 }

@@ -46,6 +46,16 @@ MatX3 ring_points(const TriMesh& m, const std::vector<int>& ring) {
   return p;
 }
 
+// Mean and largest distance from each open annulus node to its target.
+void measure_motion(AnnulusTargets& out, const MatX3& open_points) {
+  const auto n = open_points.rows();
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double d = (out.targets.row(i) - open_points.row(i)).norm();
+    out.mean_motion_mm += d / n;
+    out.max_motion_mm = std::max(out.max_motion_mm, d);
+  }
+}
+
 MatX3 resample(const Ring& r, int count) {
   MatX3 out(count, 3);
   for (int k = 0; k < count; ++k) out.row(k) = r.at(static_cast<double>(k) / count).transpose();
@@ -107,12 +117,8 @@ AnnulusTargets annulus_targets(const TriMesh& open, const TriMesh& closed, bool 
       if (sum < best) best = sum, best_offset = offset, best_sense = sense;
     }
   out.targets.resize(n, 3);
-  for (int i = 0; i < n; ++i) {
-    out.targets.row(i) = closed_curve.at(best_offset + best_sense * open_curve.s[i]).transpose();
-    const double d = (out.targets.row(i) - open_curve.p.row(i)).norm();
-    out.mean_motion_mm += d / n;
-    out.max_motion_mm = std::max(out.max_motion_mm, d);
-  }
+  for (int i = 0; i < n; ++i) out.targets.row(i) = closed_curve.at(best_offset + best_sense * open_curve.s[i]).transpose();
+  measure_motion(out, open_curve.p);
   return out;
 }
 
@@ -135,16 +141,11 @@ AnnulusTargets annulus_targets_by_node(const TriMesh& open, const TriMesh& close
     out.targets = out.registration.apply(out.targets);
     out.ring_rms_mm = std::sqrt((out.targets - open_points).rowwise().squaredNorm().mean());
   }
-  const int n = static_cast<int>(out.nodes.size());
-  for (int i = 0; i < n; ++i) {
-    const double d = (out.targets.row(i) - open_points.row(i)).norm();
-    out.mean_motion_mm += d / n;
-    out.max_motion_mm = std::max(out.max_motion_mm, d);
-  }
+  measure_motion(out, open_points);
   // Lengths along the annulus loop, where the marked nodes form one.
   if (const std::vector<int> ring = annulus_ring(open); ring.size() >= 3) {
     std::vector<int> row_of(open.num_nodes(), -1);
-    for (int k = 0; k < n; ++k) row_of[out.nodes[k]] = k;
+    for (std::size_t k = 0; k < out.nodes.size(); ++k) row_of[out.nodes[k]] = static_cast<int>(k);
     MatX3 closed_ring(static_cast<int>(ring.size()), 3);
     for (std::size_t k = 0; k < ring.size(); ++k) closed_ring.row(k) = out.targets.row(row_of[ring[k]]);
     out.open_length_mm = Ring(ring_points(open, ring)).length;

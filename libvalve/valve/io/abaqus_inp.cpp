@@ -205,11 +205,10 @@ TriMesh shell_mesh(const AbaqusModel& model, const std::string& annulus_set, con
       const auto& e = b.nodes[k];
       const auto dir = model.element_direction.find(b.ids[k]);
       const Vec3* direction = dir == model.element_direction.end() ? nullptr : &dir->second;
-      if (e.size() == 3) direction_of_triangle.push_back(direction);
-      if (e.size() == 4) direction_of_triangle.insert(direction_of_triangle.end(), 2, direction);
       if (e.size() == 3) {
         mesh.triangles.push_back({node(e[0]), node(e[1]), node(e[2])});
         leaflet_of_triangle.push_back(leaflet);
+        direction_of_triangle.push_back(direction);
       } else if (e.size() == 4) {
         const int a = node(e[0]), b1 = node(e[1]), c = node(e[2]), d = node(e[3]);
         auto at = [&](int i) { return Vec3(model.points.row(rows[i]).transpose()); };
@@ -220,8 +219,8 @@ TriMesh shell_mesh(const AbaqusModel& model, const std::string& annulus_set, con
           mesh.triangles.push_back({a, b1, d});
           mesh.triangles.push_back({b1, c, d});
         }
-        leaflet_of_triangle.push_back(leaflet);
-        leaflet_of_triangle.push_back(leaflet);
+        leaflet_of_triangle.insert(leaflet_of_triangle.end(), 2, leaflet);
+        direction_of_triangle.insert(direction_of_triangle.end(), 2, direction);
       }
     }
     ++leaflet;

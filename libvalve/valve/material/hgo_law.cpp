@@ -48,34 +48,36 @@ double HgoLaw::energy(const Voigt& E) const {
 
 Voigt HgoLaw::stress(const Voigt& E) const {
   Voigt S;
-  Mat3 D;
-  stress_and_tangent(E, S, D);
+  evaluate(E, S, nullptr);  // the force-only path of the FE term: no tangent
   return S;
 }
 
 Mat3 HgoLaw::tangent(const Voigt& E) const {
   Voigt S;
   Mat3 D;
-  stress_and_tangent(E, S, D);
+  evaluate(E, S, &D);
   return D;
 }
 
-void HgoLaw::stress_and_tangent(const Voigt& E, Voigt& S, Mat3& D) const {
+void HgoLaw::stress_and_tangent(const Voigt& E, Voigt& S, Mat3& D) const { evaluate(E, S, &D); }
+
+void HgoLaw::evaluate(const Voigt& E, Voigt& S, Mat3* D) const {
   const Invariants v = invariants(p_, E);
   // Isotropic part: W1 = dW/dI1, W11 = d²W/dI1².
   const double e = std::exp(p_.C01 * (v.I1 - 3));
   const double W1 = p_.C10 * p_.C01 * e, W11 = p_.C10 * p_.C01 * p_.C01 * e;
   Voigt g = W1 * v.dI1;
-  Mat3 H = W11 * v.dI1 * v.dI1.transpose() + W1 * v.d2I1;
+  Mat3 H = Mat3::Zero();
+  if (D) H = W11 * v.dI1 * v.dI1.transpose() + W1 * v.d2I1;
   // Fiber part (tension only): Wf = k1 Ef e^{k2 Ef²}, Wff = k1 (1 + 2 k2 Ef²) e^{k2 Ef²}.
   if (v.Ef > 0 && p_.k1 > 0) {
     const double ef = std::exp(p_.k2 * v.Ef * v.Ef);
     const double Wf = p_.k1 * v.Ef * ef, Wff = p_.k1 * (1 + 2 * p_.k2 * v.Ef * v.Ef) * ef;
     g += Wf * v.dEf;
-    H += Wff * v.dEf * v.dEf.transpose() + Wf * v.d2Ef;
+    if (D) H += Wff * v.dEf * v.dEf.transpose() + Wf * v.d2Ef;
   }
   S = kVoigtScale.cwiseProduct(g);
-  D = kVoigtScale.asDiagonal() * H * kVoigtScale.asDiagonal();
+  if (D) *D = kVoigtScale.asDiagonal() * H * kVoigtScale.asDiagonal();
 }
 
 }  // namespace valve

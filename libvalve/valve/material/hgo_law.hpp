@@ -36,6 +36,8 @@ class HgoLaw final : public MaterialLaw {
   const HgoParameters& parameters() const { return p_; }
 
  private:
+  /// The stress, and the tangent where D is given.
+  void evaluate(const Voigt& E, Voigt& S, Mat3* D) const;
   HgoParameters p_;
 };
 
