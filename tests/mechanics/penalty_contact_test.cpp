@@ -167,10 +167,11 @@ TEST_CASE("penalty contact stops free edges crossing edge-on", "[mechanics][pena
   CHECK(node3(f, 5).norm() == 0);
 }
 
-TEST_CASE("penalty contact step limits per node follow the distance to the other surface", "[mechanics][penalty_contact]") {
-  // Leaflet 1 is leaflet 0 lifted by h: every node-face and edge-edge pair across the two is
-  // h apart, so every node's g is h. Default D = δ + 4 max(δ, mean edge / 2) with edges of
-  // 2, 2 and 2√2 mm, so L = (D − δ)/4 = mean edge / 2.
+TEST_CASE("penalty contact step ratio bounds each pair's closing along its normal", "[mechanics][penalty_contact]") {
+  // Leaflet 1 is leaflet 0 lifted by h: every top node lies straight above a bottom vertex,
+  // so every node-face pair's closest point is that vertex and its normal is ±z. Default
+  // D = δ + 4 max(δ, mean edge / 2) with edges of 2, 2 and 2√2 mm, so L = (D − δ)/4 = mean
+  // edge / 2, and a step may take a node 2L from where the candidate list was built.
   auto lifted_pair = [](double h) {
     TriMesh m;
     m.points.resize(6, 3);
@@ -181,21 +182,92 @@ TEST_CASE("penalty contact step limits per node follow the distance to the other
     return m;
   };
   const double delta = 0.25, L = (4 + 2 * std::sqrt(2.0)) / 3 / 2;
-  for (double h : {0.1, 1.0, 3.5, 6.0}) {
-    const TriMesh m = lifted_pair(h);
-    PenaltyContactTerm c(m, PenaltyContactOptions{}, std::vector<char>(18, 0));
-    std::vector<double> limits(6, 1e9);
-    c.limit_node_steps(limits);  // no state seen yet: the uniform bound
-    for (double l : limits) CHECK(l == Approx(0.4 * delta));
-    c.update_couplings(flatten(m.points));
-    limits.assign(6, 1e9);
-    c.limit_node_steps(limits);
-    // h = 0.1: inside δ, 0.4 δ; 1.0: 0.4 h; 3.5: 0.4 h = 1.4 is above L; 6.0: beyond D, no pair.
-    const double expected = h > c.detection_distance() ? L : std::min(L, 0.4 * std::max(delta, h));
-    INFO("h = " << h);
-    for (double l : limits) CHECK(l == Approx(expected));
-  }
   CHECK(L == Approx(1.1381).margin(1e-4));
+  auto move_top = [](const Vec3& d) {
+    VecX dx = VecX::Zero(18);
+    for (int i = 3; i < 6; ++i) dx.segment<3>(3 * i) = d;
+    return dx;
+  };
+  PenaltyContactOptions faces_only;
+  faces_only.edge_contact = false;
+  for (double h : {0.1, 1.0, 3.5}) {
+    INFO("h = " << h);
+    const TriMesh m = lifted_pair(h);
+    const VecX x = flatten(m.points);
+    PenaltyContactTerm c(m, faces_only, std::vector<char>(18, 0));
+    // No state seen yet: every node within 0.4 δ.
+    CHECK(c.step_ratio(x, move_top(Vec3(0, 0, -0.05))) == Approx(0.05 / (0.4 * delta)));
+    c.update_couplings(x);
+    // Straight down by s: every pair closes by s, against 0.8 max(δ, h); and the top nodes
+    // move s of their 2L.
+    const double s = 0.05;
+    CHECK(c.step_ratio(x, move_top(Vec3(0, 0, -s))) ==
+          Approx(std::max(s / (0.8 * std::max(delta, h)), s / (2 * L))));
+    // Moving apart closes nothing; sliding sideways neither (the absolute bound of the
+    // first version: 0.3 / (0.8 max(δ, h)), 1.5 at h = 0.1).
+    CHECK(c.step_ratio(x, move_top(Vec3(0, 0, 0.3))) == Approx(0.3 / (2 * L)));
+    CHECK(c.step_ratio(x, move_top(Vec3(0.3, 0, 0))) == Approx(0.3 / (2 * L)));
+    // The whole valve moving together closes nothing either.
+    VecX all = VecX::Zero(18);
+    for (int i = 0; i < 6; ++i) all.segment<3>(3 * i) = Vec3(0.2, -0.1, 0.4);
+    CHECK(c.step_ratio(x, all) == Approx(Vec3(0.2, -0.1, 0.4).norm() / (2 * L)));
+  }
+}
+
+TEST_CASE("penalty contact: a step within the ratio never closes a pair by more than 0.8 of its gap", "[mechanics][penalty_contact]") {
+  // Random steps on two curved sheets with every pair type (faces and edges): whenever
+  // step_ratio accepts a step (<= 1), each cross-sheet node-face and edge-edge distance d,
+  // measured by brute force over all pairs, keeps d' >= min(0.2 d, δ) (candidates close by
+  // at most 0.8 max(δ, d); non-candidates stay beyond δ) -- checked where d >= δ.
+  std::mt19937 gen(5);
+  std::normal_distribution<double> noise(0, 1);
+  // Two wavy 3x3-node sheets 0.6 mm apart, the upper one shifted by a third of a cell.
+  const TriMesh lower = grid_mesh(2.0);
+  TriMesh m;
+  m.points.resize(18, 3);
+  for (int i = 0; i < 9; ++i) {
+    m.points.row(i) = lower.points.row(i);
+    m.points.row(i + 9) = lower.points.row(i) + Eigen::RowVector3d(0.33, 0.2, 0.6);
+  }
+  for (int i = 0; i < 18; ++i) m.points(i, 2) += 0.15 * std::sin(1.3 * m.points(i, 0) + 0.7 * m.points(i, 1));
+  for (const Tri& t : lower.triangles) {
+    m.triangles.push_back(t);
+    m.leaflet.push_back(0);
+  }
+  for (const Tri& t : lower.triangles) {
+    m.triangles.push_back(Tri(t[0] + 9, t[1] + 9, t[2] + 9));
+    m.leaflet.push_back(1);
+  }
+  m.fill_defaults();
+  const VecX x = flatten(m.points);
+  const double delta = 0.25;
+  PenaltyContactTerm c(m, PenaltyContactOptions{}, std::vector<char>(x.size(), 0));
+  c.update_couplings(x);
+  auto cross_distances = [&](const VecX& y) {
+    std::vector<double> d;
+    for (int i = 0; i < m.points.rows(); ++i)
+      for (size_t t = 0; t < m.triangles.size(); ++t) {
+        const Tri& tri = m.triangles[t];
+        if (m.leaflet[t] == (i < 9 ? 0 : 1)) continue;
+        const Vec3 p = node3(y, i), a = node3(y, tri[0]), b = node3(y, tri[1]), cc = node3(y, tri[2]);
+        const Vec3 w = closest_point_weights(p, a, b, cc);
+        d.push_back((p - (w[0] * a + w[1] * b + w[2] * cc)).norm());
+      }
+    return d;
+  };
+  const std::vector<double> before = cross_distances(x);
+  int accepted = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    VecX dx(x.size());
+    const double scale = 0.05 + 0.5 * (trial % 10) / 10.0;
+    for (int k = 0; k < dx.size(); ++k) dx[k] = scale * noise(gen);
+    if (c.step_ratio(x, dx) > 1) continue;
+    ++accepted;
+    const std::vector<double> after = cross_distances(x + dx);
+    for (size_t k = 0; k < before.size(); ++k)
+      if (before[k] >= delta) CHECK(after[k] >= std::min(0.2 * before[k], delta) - 1e-12);
+  }
+  CHECK(accepted > 20);
 }
 
 TEST_CASE("penalty contact exclusions, step limit and option checks", "[mechanics][penalty_contact]") {

@@ -3,6 +3,7 @@
 // nodal forces f(x, v) and, when asked, their Jacobians df/dx and df/dv into a pattern
 // built once from couplings(). The solver sees only the sum of terms.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
@@ -45,11 +46,16 @@ class ForceTerm {
   }
   /// Largest node displacement per solver step (mm) this term tolerates; infinity if any.
   virtual double max_step_length() const { return std::numeric_limits<double>::infinity(); }
-  /// Per node (lowered in place): the displacement this term tolerates in a step from the
-  /// state of the last update_couplings(). By default max_step_length() for every node.
-  virtual void limit_node_steps(std::vector<double>& limits) const {
+  /// How much of what this term tolerates a step dx from x (the state of the last
+  /// update_couplings()) uses: the step is acceptable while the ratio is at most 1. By
+  /// default the largest nodal |dx_i| over max_step_length().
+  virtual double step_ratio(const VecX& x, const VecX& dx) const {
+    (void)x;
     const double m = max_step_length();
-    for (double& l : limits) l = std::min(l, m);
+    if (!std::isfinite(m)) return 0;
+    double longest = 0;
+    for (int i = 0; i < dx.size() / 3; ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
+    return longest / m;
   }
   /// Whether this is an applied load (pressure, edge loads) rather than a material or
   /// constraint response; solvers use the applied load to scale residual tolerances.

@@ -94,10 +94,10 @@ bool MechanicalSystem::energy(const State& s, double& e) const {
   return true;
 }
 
-std::vector<double> MechanicalSystem::node_step_limits() const {
-  std::vector<double> limits(n_, std::numeric_limits<double>::infinity());
-  for (const auto& t : terms_) t->limit_node_steps(limits);
-  return limits;
+double MechanicalSystem::step_ratio(const VecX& x, const VecX& dx) const {
+  double r = 0;
+  for (const auto& t : terms_) r = std::max(r, t->step_ratio(x, dx));
+  return r;
 }
 
 double MechanicalSystem::max_step_length() const {

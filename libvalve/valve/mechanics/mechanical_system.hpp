@@ -62,9 +62,9 @@ class MechanicalSystem {
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
   /// Smallest max_step_length() of the terms (infinity if none limits the step).
   double max_step_length() const;
-  /// Per node, the smallest displacement any term tolerates in a step from the state of the
-  /// last Jacobian evaluation (limit_node_steps of every term; infinity if none limits it).
-  std::vector<double> node_step_limits() const;
+  /// The largest step_ratio() of the terms for a step dx from x, the state of the last
+  /// Jacobian evaluation (0 if no term limits steps); a step is acceptable up to 1.
+  double step_ratio(const VecX& x, const VecX& dx) const;
   /// Largest |f| over unconstrained dofs.
   double max_free_force(const VecX& f) const;
 

@@ -59,8 +59,7 @@ bool PenaltyContactTerm::update_couplings(const VecX& x) {
   if (stale) rebuild_candidates(x);
   // The pattern needs the pairs active here, where the Jacobian is evaluated; the step
   // limits need every candidate's distance here, where the solver's step starts.
-  node_gap_.assign(x.size() / 3, std::numeric_limits<double>::infinity());
-  active_contacts(x, contacts_, &node_gap_);
+  active_contacts(x, contacts_, &pair_gaps_);
   contacts_x_ = x;
   std::vector<std::pair<int, int>> coupled;
   for (const Contact& c : contacts_)
@@ -131,19 +130,43 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
   stats_.broad_phase_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-void PenaltyContactTerm::limit_node_steps(std::vector<double>& limits) const {
-  const double L = verlet_step(), floor = 0.4 * opt_.separation;
-  for (size_t i = 0; i < limits.size(); ++i) {
-    const double g = i < node_gap_.size() ? node_gap_[i] : 0.0;  // before any update: the uniform bound
-    limits[i] = std::min(limits[i], std::min(L, std::max(floor, 0.4 * g)));
+double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
+  if (pair_gaps_.size() != face_pairs_.size() + edge_pairs_.size() || built_at_.size() != x.size()) {
+    double longest = 0;  // no state seen yet: the uniform bound
+    for (int i = 0; i < dx.size() / 3; ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
+    return std::max(longest / verlet_step(), longest / (0.4 * opt_.separation));
   }
+  // The candidate list: every node within 2L of where the list was built.
+  double ratio = 0;
+  for (int i = 0; i < dx.size() / 3; ++i)
+    ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
+  // Every candidate pair closes by less than 0.8 max(δ, d).
+  const double delta = opt_.separation;
+  size_t k = 0;
+  auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
+    const PairGap& g = pair_gaps_[k++];
+    double closing = 0;
+    for (int a : side_a)
+      for (int b : side_b) {
+        const Vec3 relative = node3(dx, b) - node3(dx, a);
+        closing = std::max(closing, g.normal.isZero() ? relative.norm() : g.normal.dot(relative));
+      }
+    ratio = std::max(ratio, closing / (0.8 * std::max(delta, g.distance)));
+  };
+  const auto& tris = topology_.triangles();
+  for (const auto& [i, t] : face_pairs_) check({i}, {tris[t][0], tris[t][1], tris[t][2]});
+  const auto& edges = topology_.edges();
+  for (const auto& [be, e] : edge_pairs_) check({edges[be].first, edges[be].second}, {edges[e].first, edges[e].second});
+  return ratio;
 }
 
-void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<double>* node_gap) const {
+void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps) const {
   out.clear();
-  auto note_gap = [&](std::initializer_list<int> nodes, double d) {
-    if (node_gap)
-      for (int v : nodes) (*node_gap)[v] = std::min((*node_gap)[v], d);
+  if (gaps) gaps->clear();
+  // The normal from the first side's point to the second's closest point (zero when they
+  // coincide: no direction to bound the closing by).
+  auto note_gap = [&](double d, const Vec3& first_minus_second) {
+    if (gaps) gaps->push_back(PairGap{d, d > 1e-12 ? Vec3(first_minus_second / d) : Vec3::Zero()});
   };
   const double delta = opt_.separation;
   const auto& tris = topology_.triangles();
@@ -153,7 +176,7 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     const Vec3 w = closest_point_weights(p, xa, xb, xc);
     const Vec3 q = w[0] * xa + w[1] * xb + w[2] * xc;
     const double d = (p - q).norm();
-    note_gap({i, tri[0], tri[1], tri[2]}, d);
+    note_gap(d, p - q);
     if (d >= delta) continue;
     Contact ct;
     ct.nodes[0] = i, ct.weights[0] = 1;
@@ -171,7 +194,7 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
     const Vec3 diff = (xa + s * (xb - xa)) - (xc + u * (xd - xc));
     const double dist = diff.norm();
-    note_gap({a, b, c, d}, dist);
+    note_gap(dist, diff);
     if (dist >= delta) continue;
     Contact ct;
     ct.nodes[0] = a, ct.nodes[1] = b, ct.nodes[2] = c, ct.nodes[3] = d;

@@ -47,20 +47,33 @@
 // Detection (a Verlet list). Candidates are the pairs closer than the detection distance D
 // when the list is built; D = δ + 4 L with the step bound L = max(δ, half the mean rest
 // edge length) by default. The list is rebuilt at a coupling refresh (every Jacobian
-// evaluation) once some node has moved more than L since the last build, and solvers keep
-// every node's step below L: a pair outside the list has then closed in by at most
-// 2 · 2L = D − δ, so none comes within δ unseen. The Jacobian pattern holds only pairs
+// evaluation) once some node has moved more than L since the last build, and a step may
+// take no node further than 2L from where the list was built (step_ratio): a pair outside
+// the list has then closed in by at most 2 · 2L = D − δ, so none comes within δ unseen.
+// Right after a rebuild a node may so move 2L in one step (with a flat L per step, the
+// sample mitral closure's step size was set by L on every step of the closing motion).
+// The Jacobian pattern holds only pairs
 // that were active (d < δ) at some Jacobian evaluation, so a generous D costs distance
 // queries, not fill-in. Since d is unsigned, a surface that was crossed stays crossed, so
-// no candidate pair may close in one step by its whole distance: node i's step is kept below
-//     s_i = min(L, 0.4 max(δ, g_i)),   g_i = the smallest d over the candidate pairs of i
-// at the step's start (limit_node_steps). A pair at distance g ≥ δ then closes by at most
-// 0.8 g (d is 1-Lipschitz in each node's position: |Δd| ≤ |Δp| + max_j |Δx_j|), so it cannot
-// reach the other side; a pair inside δ closes by at most 0.8 δ, the earlier uniform bound
-// (measured: with steps up to 0.6 mm, sheets pressed together crossed). Nodes far from any
-// other surface may so move up to L in a step; with 0.4 δ for every node, the sample mitral
-// closure spent 370 of its 509 steps in the first 50 ms of the closing motion. The stiffness
-// is well above the applied load (k δ ≫ pressure × node area).
+// no candidate pair may close in one step by its whole distance (step_ratio): every
+// candidate pair's closing
+//     c = max_j n · (Δx_j − Δp)  <  0.8 max(δ, d),   d, n at the step's start,
+// for node p and triangle (x_1, x_2, x_3), n = (p − q)/d the unit vector from the closest
+// point q; for two edges, the largest over their four end-node pairs. Why this bounds d':
+// q is the closest point of a convex set, so n · (p − x) ≥ d for every point x = Σ w_j x_j
+// of the triangle (the supporting plane), and with w' the closest point's weights after
+// the step,
+//     d' ≥ n · (p' − Σ w'_j x'_j) ≥ d + Σ w'_j n · (Δp − Δx_j) ≥ d − c,
+// and likewise at every point of the straight path (edges: the Minkowski difference of two
+// segments is convex, and the closing is bilinear in the two parameters). A pair at
+// distance d ≥ δ so closes by at most 0.8 d and cannot reach the other side; a pair inside
+// δ closes by at most 0.8 δ (measured: with steps up to 0.6 mm, sheets pressed together
+// crossed). Sliding along n's plane costs nothing. Where d vanishes (no n), the bound is
+// max_j |Δx_j − Δp|. Why not an absolute bound: the first version kept every node of a
+// pair within 0.4 max(δ, d) of where it started, and two coapting leaflets moving together
+// were held to 0.1 mm per step; the sample mitral closure took 263 steps (188 with the
+// relative bound above, bounded on 108 steps by pairs inside δ sliding past each other).
+// The stiffness is well above the applied load (k δ ≫ pressure × node area).
 #include <algorithm>
 #include <vector>
 
@@ -88,7 +101,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
   void couplings(std::vector<std::pair<int, int>>& pairs) const override;
   bool update_couplings(const VecX& x) override;
   double max_step_length() const override { return std::min(verlet_step(), 0.4 * opt_.separation); }
-  void limit_node_steps(std::vector<double>& limits) const override;
+  double step_ratio(const VecX& x, const VecX& dx) const override;
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
   bool energy(const State& s, double& e) const override;
 
@@ -104,8 +117,14 @@ class PenaltyContactTerm final : public ContactForceTerm {
     Vec3 normal;
     double distance;
   };
-  /// Also lowers node_gap[v], where given, to the distance of every candidate pair of v.
-  void active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<double>* node_gap = nullptr) const;
+  /// A candidate pair's distance d and unit direction n from the second side (triangle, or
+  /// the other edge) to the first (node, or boundary edge); n = 0 when d vanishes.
+  struct PairGap {
+    double distance;
+    Vec3 normal;
+  };
+  /// Also records, where given, every candidate pair's gap (face pairs, then edge pairs).
+  void active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps = nullptr) const;
   /// The active contacts at x: those found by the last update_couplings if x is where it
   /// ran (a Jacobian evaluation asks twice at one state), else computed afresh into `scratch`.
   const std::vector<Contact>& contacts_at(const VecX& x, std::vector<Contact>& scratch) const;
@@ -127,7 +146,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
   VecX built_at_;  // positions when the candidate list was built (empty: never)
   VecX contacts_x_;                 // where update_couplings last found the active contacts
   std::vector<Contact> contacts_;   // and what it found
-  std::vector<double> node_gap_;    // there: per node, g_i (infinity without candidates)
+  std::vector<PairGap> pair_gaps_;  // there: each candidate pair's gap (face, then edge pairs)
   mutable ContactStatistics stats_;
 };
 

@@ -71,9 +71,9 @@ bool Bdf2Integrator::step(const History& in, double h, double load, History& out
   out.v_prev = in.v;
   // A node moving further than the force terms tolerate (contact: the separation and the
   // candidate list, see penalty_contact.hpp) fails the step.
-  const std::vector<double> limits = sys_.node_step_limits();
-  for (int i = 0; i < sys_.num_nodes(); ++i)
-    if (std::isfinite(limits[i]) && dx.segment<3>(3 * i).norm() > limits[i]) return false;
+  const double ratio = sys_.step_ratio(in.x, dx);
+  limit_ratio_ = std::max(limit_ratio_, ratio);
+  if (ratio > 1) return false;
   out.x = in.x + dx;
   out.v = in.euler ? VecX(dx / h) : VecX((1.5 * out.x - 2.0 * in.x + 0.5 * in.x_prev) / h);
   out.euler = false;
@@ -99,11 +99,24 @@ bool Bdf2Integrator::accept_error(double err) {
     return false;
   }
   h_hist_ = h_;
-  h_ = std::min(opt_.max_step, h_ * std::clamp(scale, 0.2, 2.0));
+  h_ = std::min(opt_.max_step, h_ * std::min(std::clamp(scale, 0.2, 2.0), limit_scale(2.0)));
   return true;
 }
 
+double Bdf2Integrator::limit_scale(double otherwise) const {
+  // A node's move grows at least linearly with h, so h * target / ratio keeps the largest
+  // move near `target` of its limit.
+  constexpr double target = 0.75;
+  return limit_ratio_ > 0 ? std::clamp(target / limit_ratio_, 0.1, 2.0) : otherwise;
+}
+
+void Bdf2Integrator::reject_failed_step() {
+  // A step over a node's move limit is cut to fit it; a failed solve is cut by 4.
+  h_ *= limit_ratio_ > 1 ? std::min(limit_scale(0.25), 0.9) : 0.25;
+}
+
 double Bdf2Integrator::doubling_step(double load, History& accepted) {
+  limit_ratio_ = 0;
   History big, half1;
   bool ok = step(resampled(2 * h_), 2 * h_, load, big) && step(resampled(h_), h_, load, half1);
   if (ok) {
@@ -114,7 +127,7 @@ double Bdf2Integrator::doubling_step(double load, History& accepted) {
     t_ = save_t;
   }
   if (!ok) {
-    h_ *= 0.25;
+    reject_failed_step();
     return 0;
   }
   const double h = h_;
@@ -122,9 +135,10 @@ double Bdf2Integrator::doubling_step(double load, History& accepted) {
 }
 
 double Bdf2Integrator::predictor_step(double load, History& accepted) {
+  limit_ratio_ = 0;
   const History in = resampled(h_);
   if (!step(in, h_, load, accepted)) {
-    h_ *= 0.25;
+    reject_failed_step();
     return 0;
   }
   double diff = 0;  // largest nodal |x^{n+1} - x_p|, x_p = x^{n-1} + 2 h v^n
