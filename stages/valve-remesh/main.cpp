@@ -44,8 +44,8 @@ nlohmann::json shape_json(const MeshShapeReport& r) {
 
 int main(int argc, char** argv) {
   return run_stage("valve-remesh", [&] {
-    const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "viewpoint_height", "thickness", "subdivide", "reference"};
-    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference"},
+    const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "viewpoint_height", "thickness", "subdivide", "reference", "annulus_from", "annulus_tolerance"};
+    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference", "annulus-from", "annulus-tolerance"},
                    {"no-offset", "input-is-membrane", "write-membrane", "quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-remesh: SURFACE: expected one surface mesh, found " + std::to_string(cl.positional().size()) + " arguments");
@@ -67,10 +67,14 @@ int main(int argc, char** argv) {
     ro.mid_surface_offset = offset && !membrane_input ? thickness / 2 : 0;
     const int subdivide = static_cast<int>(args.integer("subdivide", 0, 0, 2));
     const std::string reference = args.text("reference", "");
+    const std::string annulus_from = args.text("annulus-from", "");
+    const double annulus_tolerance = args.length_mm("annulus-tolerance", 2.0, 0, 50);
 
     const TriMesh surface = read_mesh(surface_file);
     TriMesh reference_mesh;
     if (!reference.empty()) reference_mesh = read_mesh(reference);  // fail early, before the work
+    std::vector<std::pair<Vec3, Vec3>> annulus_landmark;
+    if (!annulus_from.empty()) annulus_landmark = annulus_segments(read_mesh(annulus_from), annulus_from);
     MembraneSummary ms;
     TriMesh membrane;
     if (membrane_input) {
@@ -83,12 +87,14 @@ int main(int argc, char** argv) {
     }
     RemeshSummary rs;
     TriMesh mesh = remesh_membrane(membrane, ro, &rs);
-    const int loops = mark_annulus_and_free_edge(mesh, ms.atrial_direction);
+    const int loops = annulus_landmark.empty() ? mark_annulus_and_free_edge(mesh, ms.atrial_direction)
+                                               : mark_annulus_near(mesh, annulus_landmark, annulus_tolerance, ms.atrial_direction);
 
     fs::create_directories(out);
     StageSummary summary("remesh", out);
     summary.add_input("surface", surface_file);
     if (!reference.empty()) summary.add_input("reference", reference);
+    if (!annulus_from.empty()) summary.add_input("annulus", annulus_from);
     summary.parameters() = args.used();
     summary.parameters()["offset"] = offset;
     summary.parameters()["input_is_membrane"] = membrane_input;

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "valve/core/error.hpp"
 #include "valve/mesh/quality.hpp"
 #include "valve/remesh/membrane_extraction.hpp"
 
@@ -67,4 +68,71 @@ TEST_CASE("the atrial direction of a funnel points to its wide end", "[remesh][m
       pts.row(k) = (r * std::cos(a) * u + r * std::sin(a) * v - double(j) * axis).transpose();
     }
   CHECK(estimate_atrial_direction(pts).dot(axis) > 0.999);
+}
+
+namespace {
+// A funnel-shaped ring membrane: nodes on `rings` circles of 24, radius 20 mm at z = 1
+// (the outer loop, the annulus) down to 10 mm at z = 0 (the inner loop, the free edge).
+TriMesh ring_membrane(int rings = 3) {
+  TriMesh m;
+  const int n = 24;
+  m.points.resize(n * rings, 3);
+  for (int j = 0; j < rings; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * 3.14159265358979 * i / n, s = double(j) / (rings - 1), r = 20 - 10 * s;
+      m.points.row(j * n + i) << r * std::cos(a), r * std::sin(a), 1 - s;
+    }
+  for (int j = 0; j + 1 < rings; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * n + i, b = j * n + (i + 1) % n, c = a + n, d = b + n;
+      m.triangles.push_back({a, b, d});
+      m.triangles.push_back({a, d, c});
+    }
+  m.fill_defaults();
+  return m;
+}
+}  // namespace
+
+TEST_CASE("the annulus can be taken from a landmark instead of the outer loop", "[remesh][membrane]") {
+  TriMesh reference = ring_membrane();
+  REQUIRE(mark_annulus_and_free_edge(reference, Vec3::UnitZ()) == 2);
+  // The reference's annulus is its outer loop: 24 edges on the 20 mm circle.
+  const auto all = annulus_segments(reference, "reference.vtp");
+  CHECK(all.size() == 24);
+  for (const auto& [a, b] : all) {
+    CHECK(std::hypot(a.x(), a.y()) == Approx(20));
+    CHECK(a.z() == Approx(1));
+  }
+  // Half of that ring as the landmark (angles 0..180°): the outer-loop nodes on that half
+  // (0°, 15°, ..., 180°: 13) are annulus; the other 11 and the inner loop's 24 free edge.
+  std::vector<std::pair<Vec3, Vec3>> half;
+  for (const auto& s : all)
+    if (s.first.y() >= -1e-9 && s.second.y() >= -1e-9) half.push_back(s);
+  REQUIRE(half.size() == 12);
+  TriMesh mesh = ring_membrane();
+  CHECK(mark_annulus_near(mesh, half, 0.5, Vec3::UnitZ()) == 2);
+  int annulus = 0, free_edge = 0;
+  for (int v = 0; v < mesh.num_nodes(); ++v) {
+    const bool on_half = v < 24 && mesh.points(v, 1) >= -1e-9;
+    CHECK((mesh.boundary[v] == BoundaryType::attached) == on_half);
+    CHECK((mesh.roles[v] == NodeRole::fixed) == on_half);
+    annulus += mesh.boundary[v] == BoundaryType::attached;
+    free_edge += mesh.boundary[v] == BoundaryType::free_edge;
+  }
+  CHECK(annulus == 13);
+  CHECK(free_edge == 11 + 24);
+  // Fibers along the annulus: horizontal and perpendicular to the radius.
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const Vec3 f = mesh.fiber.row(t).transpose();
+    const Tri& tri = mesh.triangles[t];
+    const Vec3 c = (mesh.points.row(tri[0]) + mesh.points.row(tri[1]) + mesh.points.row(tri[2])).transpose() / 3;
+    CHECK(std::abs(f.dot(Vec3(c.x(), c.y(), 0).normalized())) < 0.3);
+  }
+  // A landmark 5 mm above the valve marks nothing within 2 mm: an error, not a valve
+  // without an annulus.
+  std::vector<std::pair<Vec3, Vec3>> lifted = half;
+  for (auto& [a, b] : lifted) a.z() += 5, b.z() += 5;
+  CHECK_THROWS_AS(mark_annulus_near(mesh, lifted, 2.0, Vec3::UnitZ()), InputError);
+  // A reference without a marked annulus is refused.
+  CHECK_THROWS_AS(annulus_segments(ring_membrane(), "plain.vtp"), InputError);
 }

@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <map>
+#include <limits>
 #include <numeric>
 
 #include "valve/core/error.hpp"
@@ -126,6 +127,25 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
   return out;
 }
 
+namespace {
+
+// Fibers circumferential about the valve axis (parallel to the annulus).
+void set_circumferential_fibers(TriMesh& mesh, const Vec3& a) {
+  const Vec3 centre = mesh.points.colwise().mean().transpose();
+  mesh.fiber.resize(mesh.num_triangles(), 3);
+  for (int t = 0; t < mesh.num_triangles(); ++t) {
+    const Tri& tri = mesh.triangles[t];
+    const Vec3 c = (mesh.points.row(tri[0]) + mesh.points.row(tri[1]) + mesh.points.row(tri[2])).transpose() / 3;
+    const Vec3 n = triangle_normal(mesh.points, tri);
+    Vec3 f = a.cross(c - centre);
+    f -= f.dot(n) * n;
+    if (f.norm() < 1e-12) f = (mesh.points.row(tri[1]) - mesh.points.row(tri[0])).transpose();
+    mesh.fiber.row(t) = f.normalized().transpose();
+  }
+}
+
+}  // namespace
+
 int mark_annulus_and_free_edge(TriMesh& mesh, const Vec3& atrial_direction) {
   const Vec3 a = atrial_direction.normalized();
   const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
@@ -144,18 +164,50 @@ int mark_annulus_and_free_edge(TriMesh& mesh, const Vec3& atrial_direction) {
       mesh.boundary[n] = is_annulus ? BoundaryType::attached : BoundaryType::free_edge;
       if (is_annulus) mesh.roles[n] = NodeRole::fixed;
     }
-  // Fibers circumferential about the valve axis (parallel to the annulus).
-  const Vec3 centre = mesh.points.colwise().mean().transpose();
-  mesh.fiber.resize(mesh.num_triangles(), 3);
-  for (int t = 0; t < mesh.num_triangles(); ++t) {
-    const Tri& tri = mesh.triangles[t];
-    const Vec3 c = (mesh.points.row(tri[0]) + mesh.points.row(tri[1]) + mesh.points.row(tri[2])).transpose() / 3;
-    const Vec3 n = triangle_normal(mesh.points, tri);
-    Vec3 f = a.cross(c - centre);
-    f -= f.dot(n) * n;
-    if (f.norm() < 1e-12) f = (mesh.points.row(tri[1]) - mesh.points.row(tri[0])).transpose();
-    mesh.fiber.row(t) = f.normalized().transpose();
+  set_circumferential_fibers(mesh, a);
+  return static_cast<int>(topo.loops.size());
+}
+
+std::vector<std::pair<Vec3, Vec3>> annulus_segments(const TriMesh& reference, const std::string& file) {
+  std::vector<std::pair<Vec3, Vec3>> segments;
+  if (reference.boundary.size() == static_cast<std::size_t>(reference.num_nodes())) {
+    auto attached = [&](int v) { return reference.boundary[v] == BoundaryType::attached; };
+    const Topology topo = build_topology(reference.triangles, reference.num_nodes());
+    for (const Edge& e : topo.edges)
+      if (e.tris[1] < 0 && attached(e.a) && attached(e.b))
+        segments.emplace_back(reference.points.row(e.a).transpose(), reference.points.row(e.b).transpose());
   }
+  if (segments.empty())
+    throw_input_error(file, "BoundaryType", "a mesh whose annulus is marked (boundary edges with both nodes attached = 1)",
+                      "no such edge");
+  return segments;
+}
+
+int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& annulus, double tolerance,
+                      const Vec3& atrial_direction) {
+  const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
+  mesh.roles.assign(mesh.num_nodes(), NodeRole::free);
+  mesh.boundary.assign(mesh.num_nodes(), BoundaryType::interior);
+  int marked = 0;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& loop : topo.loops)
+    for (int n : loop) {
+      const Vec3 p = mesh.points.row(n).transpose();
+      double d = std::numeric_limits<double>::infinity();
+      for (const auto& [a, b] : annulus) {
+        const Vec3 ab = b - a;
+        const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
+        d = std::min(d, (p - a - t * ab).norm());
+      }
+      nearest = std::min(nearest, d);
+      const bool is_annulus = d <= tolerance;
+      mesh.boundary[n] = is_annulus ? BoundaryType::attached : BoundaryType::free_edge;
+      if (is_annulus) mesh.roles[n] = NodeRole::fixed, ++marked;
+    }
+  if (marked == 0)
+    throw_input_error("annulus landmark", "annulus_tolerance", "a boundary node within " + std::to_string(tolerance) + " mm of the annulus",
+                      "the nearest at " + std::to_string(nearest) + " mm");
+  set_circumferential_fibers(mesh, atrial_direction.normalized());
   return static_cast<int>(topo.loops.size());
 }
 

@@ -50,4 +50,18 @@ Vec3 estimate_atrial_direction(const MatX3& points);
 /// number of loops.
 int mark_annulus_and_free_edge(TriMesh& mesh, const Vec3& atrial_direction);
 
+/// The annulus as a landmark: the edges of `reference` whose two nodes are both attached
+/// (BoundaryType), e.g. the annulus ring of an atlas or of the model a scan was made from.
+/// Throws InputError (naming `file`) when the reference marks no such edge.
+std::vector<std::pair<Vec3, Vec3>> annulus_segments(const TriMesh& reference, const std::string& file);
+
+/// Like mark_annulus_and_free_edge, but a boundary node is annulus when it lies within
+/// `tolerance` (mm) of the landmark segments, and free edge otherwise, whichever loop it is
+/// on. Why: where the membrane of an open scan loses part of a leaflet, its outer boundary
+/// loop runs down into the leaflets (voxelized open Texas TriValve: a 122 mm outer loop
+/// around a 98 mm annulus), and fixing that whole loop holds leaflet tissue in place.
+/// Throws InputError when no boundary node is that close. Returns the number of loops.
+int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& annulus, double tolerance,
+                      const Vec3& atrial_direction);
+
 }  // namespace valve
