@@ -211,13 +211,41 @@ TEST_CASE("penalty contact step ratio bounds each pair's closing along its norma
     VecX all = VecX::Zero(18);
     for (int i = 0; i < 6; ++i) all.segment<3>(3 * i) = Vec3(0.2, -0.1, 0.4);
     CHECK(c.step_ratio(x, all) == Approx(Vec3(0.2, -0.1, 0.4).norm() / (2 * L)));
+    // After the whole valve has moved 0.5 L (less than L: the candidate list is kept), a
+    // node may move 2L − 0.5 L more; the pairs' gaps are those at the new state.
+    VecX y = x;
+    for (int i = 0; i < 6; ++i) y[3 * i] += 0.5 * L;
+    c.update_couplings(y);
+    CHECK(c.step_ratio(y, move_top(Vec3(0.3, 0, 0))) == Approx(0.3 / (1.5 * L)));
   }
+}
+
+TEST_CASE("penalty contact step ratio of two free edges crossing edge-on", "[mechanics][penalty_contact]") {
+  // Leaflet 0 hangs below its edge (-1,0,0)-(1,0,0), leaflet 1 stands above its edge
+  // (0,-1,h)-(0,1,h): the edges cross h apart, every node is farther from the other face
+  // (sqrt(1 + h²) and more), so the edge pair sets the ratio. Lowering leaflet 1 by s closes it
+  // by s: s / (0.8 h); raising it closes nothing (the candidate-list term remains).
+  const double h = 1.0, s = 0.05;
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << -1, 0, 0, 1, 0, 0, 0, 0, -1, 0, -1, h, 0, 1, h, 0, 0, h + 1;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  const VecX x = flatten(m.points);
+  PenaltyContactTerm c(m, PenaltyContactOptions{}, std::vector<char>(18, 0));
+  c.update_couplings(x);
+  const double L = (c.detection_distance() - 0.25) / 4;
+  VecX down = VecX::Zero(18), up = VecX::Zero(18);
+  for (int i = 3; i < 6; ++i) down[3 * i + 2] = -s, up[3 * i + 2] = s;
+  CHECK(c.step_ratio(x, down) == Approx(s / (0.8 * h)));
+  CHECK(c.step_ratio(x, up) == Approx(s / (2 * L)));
 }
 
 TEST_CASE("penalty contact: a step within the ratio never closes a pair by more than 0.8 of its gap", "[mechanics][penalty_contact]") {
   // Random steps on two curved sheets with every pair type (faces and edges): whenever
-  // step_ratio accepts a step (<= 1), each cross-sheet node-face and edge-edge distance d,
-  // measured by brute force over all pairs, keeps d' >= min(0.2 d, δ) (candidates close by
+  // step_ratio accepts a step (<= 1), each cross-sheet node-face and boundary-edge/edge
+  // distance d, measured by brute force over all pairs, keeps d' >= min(0.2 d, δ) (candidates close by
   // at most 0.8 max(δ, d); non-candidates stay beyond δ) -- checked where d >= δ.
   std::mt19937 gen(5);
   std::normal_distribution<double> noise(0, 1);
@@ -243,8 +271,25 @@ TEST_CASE("penalty contact: a step within the ratio never closes a pair by more 
   const double delta = 0.25;
   PenaltyContactTerm c(m, PenaltyContactOptions{}, std::vector<char>(x.size(), 0));
   c.update_couplings(x);
+  const auto boundary = [&] {  // each sheet's boundary edges: the 8 outer edges of its grid
+    std::vector<std::pair<int, int>> edges;
+    for (int sheet = 0; sheet < 2; ++sheet)
+      for (const auto& [a, b] : {std::pair{0, 1}, {1, 2}, {2, 5}, {5, 8}, {8, 7}, {7, 6}, {6, 3}, {3, 0}})
+        edges.emplace_back(a + 9 * sheet, b + 9 * sheet);
+    return edges;
+  }();
   auto cross_distances = [&](const VecX& y) {
     std::vector<double> d;
+    // Boundary edge of one sheet against every edge of the other (the edge pairs' kind).
+    for (const auto& [a, b] : boundary)
+      for (const Tri& t : m.triangles)
+        for (int k = 0; k < 3; ++k) {
+          const int c0 = t[k], c1 = t[(k + 1) % 3];
+          if ((c0 < 9) == (a < 9)) continue;
+          const Vec3 xa = node3(y, a), xb = node3(y, b), xc = node3(y, c0), xd = node3(y, c1);
+          const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
+          d.push_back((xa + s * (xb - xa) - xc - u * (xd - xc)).norm());
+        }
     for (int i = 0; i < m.points.rows(); ++i)
       for (size_t t = 0; t < m.triangles.size(); ++t) {
         const Tri& tri = m.triangles[t];

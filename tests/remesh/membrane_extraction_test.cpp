@@ -121,12 +121,13 @@ TEST_CASE("the annulus can be taken from a landmark instead of the outer loop", 
   }
   CHECK(annulus == 13);
   CHECK(free_edge == 11 + 24);
-  // Fibers along the annulus: horizontal and perpendicular to the radius.
+  // Fibers along the annulus: perpendicular to the radius, up to the projection onto each
+  // flat facet, whose normal leans a little out of the centroid's radial plane (< 0.01).
   for (int t = 0; t < mesh.num_triangles(); ++t) {
     const Vec3 f = mesh.fiber.row(t).transpose();
     const Tri& tri = mesh.triangles[t];
     const Vec3 c = (mesh.points.row(tri[0]) + mesh.points.row(tri[1]) + mesh.points.row(tri[2])).transpose() / 3;
-    CHECK(std::abs(f.dot(Vec3(c.x(), c.y(), 0).normalized())) < 0.3);
+    CHECK(std::abs(f.dot(Vec3(c.x(), c.y(), 0).normalized())) < 0.01);
   }
   // A landmark 5 mm above the valve marks nothing within 2 mm: an error, not a valve
   // without an annulus.

@@ -136,10 +136,12 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
     for (int i = 0; i < dx.size() / 3; ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
     return std::max(longest / verlet_step(), longest / (0.4 * opt_.separation));
   }
-  // The candidate list: every node within 2L of where the list was built.
+  // The candidate list: every node within 2L of where the list was built, i.e. a step of at
+  // most 2L − (the node's move since then), which is at least L (the list is rebuilt past L).
+  // As a ratio of |dx| the bound scales with the step, as BDF2's step control assumes.
   double ratio = 0;
   for (int i = 0; i < dx.size() / 3; ++i)
-    ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
+    ratio = std::max(ratio, dx.segment<3>(3 * i).norm() / (2 * verlet_step() - (node3(x, i) - node3(built_at_, i)).norm()));
   // Every candidate pair closes by less than 0.8 max(δ, d).
   const double delta = opt_.separation;
   size_t k = 0;
