@@ -216,7 +216,8 @@ TEST_CASE("penalty contact step ratio bounds each pair's closing along its norma
     VecX y = x;
     for (int i = 0; i < 6; ++i) y[3 * i] += 0.5 * L;
     c.update_couplings(y);
-    CHECK(c.step_ratio(y, move_top(Vec3(0.3, 0, 0))) == Approx(0.3 / (1.5 * L)));
+    CHECK(c.step_ratio(y, move_top(Vec3(0.3, 0, 0))) == Approx((0.5 * L + 0.3) / (2 * L)));
+    CHECK(c.step_ratio(y, move_top(Vec3(1.5 * L, 0, 0))) == Approx(1.0));
   }
 }
 

@@ -136,12 +136,15 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
     for (int i = 0; i < dx.size() / 3; ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
     return std::max(longest / verlet_step(), longest / (0.4 * opt_.separation));
   }
-  // The candidate list: every node within 2L of where the list was built, i.e. a step of at
-  // most 2L − (the node's move since then), which is at least L (the list is rebuilt past L).
-  // As a ratio of |dx| the bound scales with the step, as BDF2's step control assumes.
+  // The candidate list: every node within 2L of where the list was built. Written as
+  // (moved since the build + |dx|) / 2L rather than |dx| / (2L − moved), although both accept
+  // the same steps: the first stays high while the list ages, which holds BDF2's step growth
+  // back until the next rebuild. With the second (linear in the step) the remeshed Texas
+  // TriValve closure grew its step into a chatter: 35,727 steps and 424 s against 2,103 steps
+  // and 28 s (the sample mitral closure: 152 against 159 steps).
   double ratio = 0;
   for (int i = 0; i < dx.size() / 3; ++i)
-    ratio = std::max(ratio, dx.segment<3>(3 * i).norm() / (2 * verlet_step() - (node3(x, i) - node3(built_at_, i)).norm()));
+    ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
   // Every candidate pair closes by less than 0.8 max(δ, d).
   const double delta = opt_.separation;
   size_t k = 0;
