@@ -3,6 +3,7 @@
 // N x 3 row-major matrix (mesh geometry) or as a flat 3N vector (solver state), with
 // node i's coordinates at entries 3i, 3i+1, 3i+2.
 #include <Eigen/Core>
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,6 +20,13 @@ using Tri = Eigen::Vector3i;
 /// Node i's 3-vector inside a flat 3N vector.
 inline auto node3(VecX& v, int i) { return v.segment<3>(3 * i); }
 inline auto node3(const VecX& v, int i) { return v.segment<3>(3 * i); }
+
+/// The largest |v_i| over the nodes of a flat 3N vector (e.g. the longest move of a step).
+inline double largest_node_norm(const VecX& v) {
+  double m = 0;
+  for (int i = 0; i < v.size() / 3; ++i) m = std::max(m, node3(v, i).norm());
+  return m;
+}
 
 /// [a]×, the matrix with [a]× b = a × b.
 inline Mat3 cross_matrix(const Vec3& a) {

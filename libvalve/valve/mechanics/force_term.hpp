@@ -52,10 +52,7 @@ class ForceTerm {
   virtual double step_ratio(const VecX& x, const VecX& dx) const {
     (void)x;
     const double m = max_step_length();
-    if (!std::isfinite(m)) return 0;
-    double longest = 0;
-    for (int i = 0; i < dx.size() / 3; ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
-    return longest / m;
+    return std::isfinite(m) ? largest_node_norm(dx) / m : 0;
   }
   /// Whether this is an applied load (pressure, edge loads) rather than a material or
   /// constraint response; solvers use the applied load to scale residual tolerances.

@@ -131,11 +131,9 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
 }
 
 double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
-  if (pair_gaps_.size() != face_pairs_.size() + edge_pairs_.size() || built_at_.size() != x.size()) {
-    double longest = 0;  // no state seen yet: the uniform bound
-    for (int i = 0; i < dx.size() / 3; ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
-    return std::max(longest / verlet_step(), longest / (0.4 * opt_.separation));
-  }
+  // No state seen yet: the uniform bound, every node within max_step_length() = min(L, 0.4 δ).
+  if (pair_gaps_.size() != face_pairs_.size() + edge_pairs_.size() || built_at_.size() != x.size())
+    return ForceTerm::step_ratio(x, dx);
   // The candidate list: every node within 2L of where the list was built. Written as
   // (moved since the build + |dx|) / 2L rather than |dx| / (2L − moved), although both accept
   // the same steps: the first stays high while the list ages, which holds BDF2's step growth

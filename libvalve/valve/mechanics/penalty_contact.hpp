@@ -68,13 +68,14 @@
 // segments is convex, and the closing is bilinear in the two parameters). A pair at
 // distance d ≥ δ so closes by at most 0.8 d and cannot reach the other side; a pair inside
 // δ closes by at most 0.8 δ, which does not rule out a crossing below 0.8 δ: there the
-// penalty (stiffness k δ ≫ pressure × node area) keeps pairs from closing that fast
-// (measured: with steps up to 0.6 mm, sheets pressed together crossed). Sliding along n's plane costs nothing. Where d vanishes (no n), the bound is
-// max_j |Δx_j − Δp|. Why not an absolute bound: the first version kept every node of a
-// pair within 0.4 max(δ, d) of where it started, and two coapting leaflets moving together
-// were held to 0.1 mm per step; the sample mitral closure took 263 steps (188 with the
-// relative bound above, bounded on 108 steps by pairs inside δ sliding past each other).
-// The stiffness is well above the applied load (k δ ≫ pressure × node area).
+// penalty, whose stiffness is well above the applied load (k δ ≫ pressure × node area),
+// keeps pairs from closing that fast (measured: with steps up to 0.6 mm, sheets pressed
+// together crossed). Sliding along n's plane costs nothing. Where d vanishes (no n), the
+// bound is max_j |Δx_j − Δp|. Why not an absolute bound: the first version kept every node
+// of a pair within 0.4 max(δ, d) of where it started, and two coapting leaflets moving
+// together were held to 0.1 mm per step; the sample mitral closure took 263 steps (188
+// bounding the relative motion max_j |Δx_j − Δp| instead, still held on 108 steps by pairs
+// inside δ sliding past each other; 159 with the closing along n).
 #include <algorithm>
 #include <vector>
 

@@ -129,8 +129,16 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
 
 namespace {
 
-// Fibers circumferential about the valve axis (parallel to the annulus).
-void set_circumferential_fibers(TriMesh& mesh, const Vec3& a) {
+// Boundary-loop nodes flagged in `annulus` become annulus (attached, fixed), the other loop
+// nodes free edge; fibers run circumferential about the valve axis (parallel to the annulus).
+void mark_boundary(TriMesh& mesh, const Topology& topo, const std::vector<char>& annulus, const Vec3& a) {
+  mesh.roles.assign(mesh.num_nodes(), NodeRole::free);
+  mesh.boundary.assign(mesh.num_nodes(), BoundaryType::interior);
+  for (const auto& loop : topo.loops)
+    for (int n : loop) {
+      mesh.boundary[n] = annulus[n] ? BoundaryType::attached : BoundaryType::free_edge;
+      if (annulus[n]) mesh.roles[n] = NodeRole::fixed;
+    }
   const Vec3 centre = mesh.points.colwise().mean().transpose();
   mesh.fiber.resize(mesh.num_triangles(), 3);
   for (int t = 0; t < mesh.num_triangles(); ++t) {
@@ -149,22 +157,17 @@ void set_circumferential_fibers(TriMesh& mesh, const Vec3& a) {
 int mark_annulus_and_free_edge(TriMesh& mesh, const Vec3& atrial_direction) {
   const Vec3 a = atrial_direction.normalized();
   const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
-  mesh.roles.assign(mesh.num_nodes(), NodeRole::free);
-  mesh.boundary.assign(mesh.num_nodes(), BoundaryType::interior);
-  int annulus = -1;
+  const std::vector<int>* highest = nullptr;
   double best = -1e300;
-  for (std::size_t l = 0; l < topo.loops.size(); ++l) {
+  for (const auto& loop : topo.loops) {
     double h = 0;
-    for (int n : topo.loops[l]) h += mesh.points.row(n).dot(a) / topo.loops[l].size();
-    if (h > best) best = h, annulus = static_cast<int>(l);
+    for (int n : loop) h += mesh.points.row(n).dot(a) / loop.size();
+    if (h > best) best = h, highest = &loop;
   }
-  for (std::size_t l = 0; l < topo.loops.size(); ++l)
-    for (int n : topo.loops[l]) {
-      const bool is_annulus = static_cast<int>(l) == annulus;
-      mesh.boundary[n] = is_annulus ? BoundaryType::attached : BoundaryType::free_edge;
-      if (is_annulus) mesh.roles[n] = NodeRole::fixed;
-    }
-  set_circumferential_fibers(mesh, a);
+  std::vector<char> annulus(mesh.num_nodes(), 0);
+  if (highest)
+    for (int n : *highest) annulus[n] = 1;
+  mark_boundary(mesh, topo, annulus, a);
   return static_cast<int>(topo.loops.size());
 }
 
@@ -186,8 +189,7 @@ std::vector<std::pair<Vec3, Vec3>> annulus_segments(const TriMesh& reference, co
 int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& annulus, double tolerance,
                       const Vec3& atrial_direction) {
   const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
-  mesh.roles.assign(mesh.num_nodes(), NodeRole::free);
-  mesh.boundary.assign(mesh.num_nodes(), BoundaryType::interior);
+  std::vector<char> near(mesh.num_nodes(), 0);
   int marked = 0;
   double nearest = std::numeric_limits<double>::infinity();
   for (const auto& loop : topo.loops)
@@ -200,14 +202,12 @@ int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& a
         d = std::min(d, (p - a - t * ab).norm());
       }
       nearest = std::min(nearest, d);
-      const bool is_annulus = d <= tolerance;
-      mesh.boundary[n] = is_annulus ? BoundaryType::attached : BoundaryType::free_edge;
-      if (is_annulus) mesh.roles[n] = NodeRole::fixed, ++marked;
+      if (d <= tolerance) near[n] = 1, ++marked;
     }
   if (marked == 0)
     throw_input_error("annulus landmark", "annulus_tolerance", "a boundary node within " + std::to_string(tolerance) + " mm of the annulus",
                       "the nearest at " + std::to_string(nearest) + " mm");
-  set_circumferential_fibers(mesh, atrial_direction.normalized());
+  mark_boundary(mesh, topo, near, atrial_direction.normalized());
   return static_cast<int>(topo.loops.size());
 }
 

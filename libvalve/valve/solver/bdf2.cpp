@@ -99,20 +99,20 @@ bool Bdf2Integrator::accept_error(double err) {
     return false;
   }
   h_hist_ = h_;
-  h_ = std::min(opt_.max_step, h_ * std::min(std::clamp(scale, 0.2, 2.0), limit_scale(2.0)));
+  h_ = std::min(opt_.max_step, h_ * std::min(std::clamp(scale, 0.2, 2.0), limit_scale()));
   return true;
 }
 
-double Bdf2Integrator::limit_scale(double otherwise) const {
+double Bdf2Integrator::limit_scale() const {
   // A node's move grows at least linearly with h, so h * target / ratio keeps the largest
   // move near `target` of its limit.
   constexpr double target = 0.75;
-  return limit_ratio_ > 0 ? std::clamp(target / limit_ratio_, 0.1, 2.0) : otherwise;
+  return limit_ratio_ > 0 ? std::clamp(target / limit_ratio_, 0.1, 2.0) : 2.0;
 }
 
 void Bdf2Integrator::reject_failed_step() {
   // A step over a node's move limit is cut to fit it; a failed solve is cut by 4.
-  h_ *= limit_ratio_ > 1 ? std::min(limit_scale(0.25), 0.9) : 0.25;
+  h_ *= limit_ratio_ > 1 ? limit_scale() : 0.25;
 }
 
 double Bdf2Integrator::doubling_step(double load, History& accepted) {

@@ -108,9 +108,9 @@ class Bdf2Integrator {
   double predictor_step(double load, History& accepted);
   /// Accepts or rejects on the error estimate and rescales h_ for the next attempt.
   bool accept_error(double err);
-  /// Factor on h that brings the attempt's largest move / limit ratio to 0.75 (`otherwise`
-  /// when no node has a limit).
-  double limit_scale(double otherwise) const;
+  /// Factor on h that brings the attempt's largest move / limit ratio to 0.75, within
+  /// [0.1, 2] (2 when no term limits the step).
+  double limit_scale() const;
   void reject_failed_step();
   History resampled(double h_new) const;
   double max_node_distance(const VecX& a, const VecX& b, bool monitors_only) const;

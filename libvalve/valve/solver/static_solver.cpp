@@ -70,8 +70,8 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
         }
         ++sum.newton_iterations;
         // Step limits: the trust radius (displacement) and the strain increment of any edge.
-        double longest = 0, strain = 0;
-        for (int i = 0; i < sys.num_nodes(); ++i) longest = std::max(longest, dx.segment<3>(3 * i).norm());
+        const double longest = largest_node_norm(dx);
+        double strain = 0;
         for (const auto& [a, b] : opt.max_strain_increment > 0 ? sys.couplings() : std::vector<std::pair<int, int>>{}) {
           const Vec3 e = node3(x, b) - node3(x, a);
           const double l = e.norm();
