@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
     RemeshSummary rs;
     TriMesh mesh = remesh_membrane(membrane, ro, &rs);
     const int loops = annulus_landmark.empty() ? mark_annulus_and_free_edge(mesh, ms.atrial_direction)
-                                               : mark_annulus_near(mesh, annulus_landmark, annulus_tolerance, ms.atrial_direction);
+                                               : mark_annulus_near(mesh, annulus_landmark, annulus_tolerance, ms.atrial_direction, annulus_from);
 
     fs::create_directories(out);
     StageSummary summary("remesh", out);

@@ -187,7 +187,7 @@ std::vector<std::pair<Vec3, Vec3>> annulus_segments(const TriMesh& reference, co
 }
 
 int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& annulus, double tolerance,
-                      const Vec3& atrial_direction) {
+                      const Vec3& atrial_direction, const std::string& landmark_file) {
   const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
   std::vector<char> near(mesh.num_nodes(), 0);
   int marked = 0;
@@ -205,7 +205,7 @@ int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& a
       if (d <= tolerance) near[n] = 1, ++marked;
     }
   if (marked == 0)
-    throw_input_error("annulus landmark", "annulus_tolerance", "a boundary node within " + std::to_string(tolerance) + " mm of the annulus",
+    throw_input_error(landmark_file, "annulus_tolerance", "a boundary node within " + std::to_string(tolerance) + " mm of the annulus",
                       "the nearest at " + std::to_string(nearest) + " mm");
   mark_boundary(mesh, topo, near, atrial_direction.normalized());
   return static_cast<int>(topo.loops.size());

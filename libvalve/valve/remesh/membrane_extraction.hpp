@@ -60,8 +60,9 @@ std::vector<std::pair<Vec3, Vec3>> annulus_segments(const TriMesh& reference, co
 /// on. Why: where the membrane of an open scan loses part of a leaflet, its outer boundary
 /// loop runs down into the leaflets (voxelized open Texas TriValve: a 122 mm outer loop
 /// around a 98 mm annulus), and fixing that whole loop holds leaflet tissue in place.
-/// Throws InputError when no boundary node is that close. Returns the number of loops.
+/// Throws InputError naming `landmark_file` when no boundary node is that close. Returns the
+/// number of loops.
 int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& annulus, double tolerance,
-                      const Vec3& atrial_direction);
+                      const Vec3& atrial_direction, const std::string& landmark_file = "annulus landmark");
 
 }  // namespace valve
