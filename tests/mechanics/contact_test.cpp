@@ -11,6 +11,7 @@
 #include "valve/core/units.hpp"
 #include "valve/mechanics/aortic_root.hpp"
 #include "valve/mechanics/broad_phase.hpp"
+#include "valve/mesh/closest_point.hpp"
 #include "valve/mechanics/contact.hpp"
 #include "valve/mechanics/nodal_load.hpp"
 
@@ -151,6 +152,47 @@ TEST_CASE("both broad phases find exactly the brute-force pairs", "[mechanics][c
   const auto some = broad_phase_pairs(x, tris, margin, BroadPhaseMethod::spatial_hash, query);
   for (const auto& [i, t] : some) CHECK(i % 3 == 0);
   CHECK(some == broad_phase_pairs(x, tris, margin, BroadPhaseMethod::sweep_and_prune, query));
+}
+
+TEST_CASE("edge box sweep finds the brute-force box pairs and every segment pair within the margin",
+          "[mechanics][contact]") {
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-5, 5);
+  const int nodes = 300;
+  VecX x(3 * nodes);
+  for (int i = 0; i < x.size(); ++i) x[i] = u(gen);
+  // Short edges and a few spanning the whole scene: a long edge starts far left of a box it
+  // reaches into, which the sweep's lower-bound window has to allow for.
+  std::vector<std::pair<int, int>> edges;
+  for (int e = 0; e < 400; ++e) edges.emplace_back(gen() % nodes, gen() % nodes);
+  std::vector<int> query;
+  for (int e = 0; e < 400; e += 7) query.push_back(e);
+  const double margin = 0.4;
+  auto box = [&](int e) {
+    const Vec3 a = node3(x, edges[e].first), b = node3(x, edges[e].second);
+    return std::make_pair(Vec3(a.cwiseMin(b)), Vec3(a.cwiseMax(b)));
+  };
+  std::vector<std::pair<int, int>> brute;
+  int close_pairs = 0;
+  const auto found = edge_box_pairs(x, edges, query, margin);
+  for (int q : query)
+    for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
+      if (e == q) continue;
+      const auto [qlo, qhi] = box(q);
+      const auto [lo, hi] = box(e);
+      if ((hi.array() >= qlo.array() - margin).all() && (lo.array() <= qhi.array() + margin).all())
+        brute.emplace_back(q, e);
+      const Vec3 a = node3(x, edges[q].first), b = node3(x, edges[q].second);
+      const Vec3 c = node3(x, edges[e].first), d = node3(x, edges[e].second);
+      const auto [s, t] = closest_segment_parameters(a, b, c, d);
+      if ((a + s * (b - a) - c - t * (d - c)).norm() <= margin) {
+        ++close_pairs;
+        CHECK(std::binary_search(found.begin(), found.end(), std::make_pair(q, e)));
+      }
+    }
+  std::sort(brute.begin(), brute.end());
+  REQUIRE(close_pairs > 50);
+  CHECK(found == brute);
 }
 
 namespace {

@@ -119,4 +119,34 @@ std::vector<std::pair<int, int>> broad_phase_pairs(const VecX& x, const std::vec
                                                      : spatial_hash(x, boxes, nodes);
 }
 
+std::vector<std::pair<int, int>> edge_box_pairs(const VecX& x, const std::vector<std::pair<int, int>>& edges,
+                                                const std::vector<int>& query_edges, double margin) {
+  std::vector<Box> boxes(edges.size());
+  double widest_x = 0;
+  for (size_t e = 0; e < edges.size(); ++e) {
+    const Vec3 a = node3(x, edges[e].first), b = node3(x, edges[e].second);
+    boxes[e] = {a.cwiseMin(b), a.cwiseMax(b)};
+    widest_x = std::max(widest_x, boxes[e].hi.x() - boxes[e].lo.x());
+  }
+  std::vector<int> order(edges.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return boxes[a].lo.x() < boxes[b].lo.x(); });
+  std::vector<double> lower_x(order.size());
+  for (size_t k = 0; k < order.size(); ++k) lower_x[k] = boxes[order[k]].lo.x();
+
+  std::vector<std::pair<int, int>> pairs;
+  for (int q : query_edges) {
+    const Vec3 lo = boxes[q].lo.array() - margin, hi = boxes[q].hi.array() + margin;
+    // An edge reaching into [lo.x, hi.x] starts at most its own x extent before lo.x.
+    auto k = std::lower_bound(lower_x.begin(), lower_x.end(), lo.x() - widest_x) - lower_x.begin();
+    for (; k < static_cast<long>(order.size()) && lower_x[k] <= hi.x(); ++k) {
+      const int e = order[k];
+      if (e != q && (boxes[e].hi.array() >= lo.array()).all() && (boxes[e].lo.array() <= hi.array()).all())
+        pairs.emplace_back(q, e);
+    }
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
+}
+
 }  // namespace valve

@@ -30,4 +30,13 @@ std::vector<std::pair<int, int>> broad_phase_pairs(const VecX& x, const std::vec
                                                    double margin, BroadPhaseMethod method,
                                                    const std::vector<char>& query = {});
 
+/// Candidate (query edge, edge) pairs, sorted: the edges whose axis-aligned boxes come
+/// within `margin` of a query edge's box on every axis (so every pair of segments closer
+/// than `margin` is among them), the query edge itself excluded. A sweep over the edges
+/// sorted by lower x bound: the query edges are few (a valve's free edges against all of
+/// its edges), and each looks only at the edges whose lower bound lies within its box,
+/// widened by the margin and by the longest edge's x extent.
+std::vector<std::pair<int, int>> edge_box_pairs(const VecX& x, const std::vector<std::pair<int, int>>& edges,
+                                                const std::vector<int>& query_edges, double margin);
+
 }  // namespace valve

@@ -29,24 +29,11 @@ PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContact
   const int n = mesh.num_nodes();
   constrained_node_.assign(n, 0);
   query_.assign(n, 0);
-  edge_query_.assign(n, 0);
-  node_boundary_edges_.assign(n, {});
   for (int i = 0; i < n; ++i) constrained_node_[i] = constrained[3 * i];
   for (int i = 0; i < n; ++i) query_[i] = topology_.has_triangles(i);
-  const auto& edges = topology_.edges();
-  for (size_t e = 0; e < edges.size(); ++e)
-    if (topology_.boundary_edge()[e] && opt_.edge_contact)
-      for (int v : {edges[e].first, edges[e].second}) {
-        edge_query_[v] = 1;
-        node_boundary_edges_[v].push_back(static_cast<int>(e));
-      }
-  triangle_edges_.assign(mesh.triangles.size(), {});
-  for (size_t t = 0; t < mesh.triangles.size(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const std::pair<int, int> key(std::min(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]),
-                                    std::max(mesh.triangles[t][k], mesh.triangles[t][(k + 1) % 3]));
-      triangle_edges_[t].push_back(static_cast<int>(std::lower_bound(edges.begin(), edges.end(), key) - edges.begin()));
-    }
+  if (opt_.edge_contact)
+    for (size_t e = 0; e < topology_.edges().size(); ++e)
+      if (topology_.boundary_edge()[e]) boundary_edges_.push_back(static_cast<int>(e));
 }
 
 void PenaltyContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
@@ -97,24 +84,9 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
 
   edge_pairs_.clear();
   if (opt_.edge_contact) {
-    // A point of a boundary edge within D of an edge lies within D + |edge| of the edge's
-    // triangles from either end node of the boundary edge.
-    double longest = 0;
-    for (size_t e = 0; e < edges.size(); ++e)
-      if (topology_.boundary_edge()[e])
-        longest = std::max(longest, (node3(x, edges[e].first) - node3(x, edges[e].second)).norm());
-    std::vector<std::pair<int, int>> found;
-    for (const auto& [i, t] : broad_phase_pairs(x, tris, detection_ + longest, opt_.broad_phase, edge_query_))
-      for (int be : node_boundary_edges_[i])
-        for (int e : triangle_edges_[t]) {
-          if (e == be) continue;
-          // A boundary-boundary pair is found from both sides; keep one.
-          if (topology_.boundary_edge()[e] && e < be) continue;
-          found.emplace_back(be, e);
-        }
-    std::sort(found.begin(), found.end());
-    found.erase(std::unique(found.begin(), found.end()), found.end());
-    for (const auto& [be, e] : found) {
+    for (const auto& [be, e] : edge_box_pairs(x, edges, boundary_edges_, detection_)) {
+      // A boundary-boundary pair is found from both sides; keep one.
+      if (topology_.boundary_edge()[e] && e < be) continue;
       const auto [a, b] = edges[be];
       const auto [c, d] = edges[e];
       if (topology_.excluded_edges(a, b, c, d) || all_constrained({a, b, c, d})) continue;

@@ -139,9 +139,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
   double detection_;
   std::vector<char> constrained_node_;
   std::vector<char> query_;        // nodes with at least one triangle
-  std::vector<char> edge_query_;   // nodes on a boundary edge
-  std::vector<std::vector<int>> node_boundary_edges_;  // per node, its boundary edges (indices into edges())
-  std::vector<std::vector<int>> triangle_edges_;       // per triangle, indices into edges()
+  std::vector<int> boundary_edges_;  // indices into edges(); empty without edge contact
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted
   std::vector<std::pair<int, int>> edge_pairs_;        // (boundary edge, edge) candidates
   std::vector<std::pair<int, int>> coupled_;
