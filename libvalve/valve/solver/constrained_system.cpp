@@ -34,6 +34,42 @@ SparseMatrix symmetric_part(const SparseMatrix& A) {
   return S;
 }
 
+const SparseMatrix& SymmetricPart::of(const SparseMatrix& A) {
+  if (!same_pattern(A)) map_pattern(A);
+  if (mirror_.empty()) {
+    S_ = symmetric_part(A);
+    return S_;
+  }
+  const double* a = A.valuePtr();
+  double* s = S_.valuePtr();
+  for (size_t k = 0; k < mirror_.size(); ++k) s[k] = 0.5 * (a[k] + a[mirror_[k]]);
+  return S_;
+}
+
+bool SymmetricPart::same_pattern(const SparseMatrix& A) const {
+  return !mirror_.empty() && A.isCompressed() && A.rows() == S_.rows() && A.cols() == S_.cols() &&
+         A.nonZeros() == S_.nonZeros() &&
+         std::equal(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1, S_.outerIndexPtr()) &&
+         std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), S_.innerIndexPtr());
+}
+
+void SymmetricPart::map_pattern(const SparseMatrix& A) {
+  mirror_.clear();
+  if (!A.isCompressed() || A.rows() != A.cols()) return;
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  std::vector<int> mirror(A.nonZeros());
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (int k = outer[j]; k < outer[j + 1]; ++k) {
+      const int i = inner[k];
+      const int* found = std::lower_bound(inner + outer[i], inner + outer[i + 1], j);
+      if (found == inner + outer[i + 1] || *found != j) return;  // not structurally symmetric
+      mirror[k] = static_cast<int>(found - inner);
+    }
+  mirror_ = std::move(mirror);
+  S_ = A;
+}
+
 namespace {
 
 // Index of the entry (row, col) in a compressed column-major matrix, or -1.

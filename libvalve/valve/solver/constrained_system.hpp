@@ -18,6 +18,23 @@ void apply_constraints(SparseMatrix& A, VecX& b, const std::vector<char>& constr
 /// (A + Aᵀ)/2.
 SparseMatrix symmetric_part(const SparseMatrix& A);
 
+/// (A + Aᵀ)/2 for a sequence of matrices that mostly share one pattern, as symmetric_part()
+/// computes it. A structurally symmetric pattern (the integrators' system matrices are)
+/// keeps A's pattern, and each entry pairs with its mirror through an index map built once
+/// per pattern; any other pattern goes through symmetric_part(). Why: the transpose and sum
+/// allocated two sparse matrices per step, 5 % of the sample mitral closure's wall time.
+class SymmetricPart {
+ public:
+  /// Valid until the next call.
+  const SparseMatrix& of(const SparseMatrix& A);
+
+ private:
+  bool same_pattern(const SparseMatrix& A) const;
+  void map_pattern(const SparseMatrix& A);
+  SparseMatrix S_;
+  std::vector<int> mirror_;  // per stored entry of A, the index of its mirror entry
+};
+
 /// The implicit integrators' system matrix
 ///     A = diag(mass) + c_x ∂f/∂x + c_v ∂f/∂v,
 /// optionally replaced by its symmetric part, with the constrained dofs imposed exactly as

@@ -175,7 +175,7 @@ class SymmetricPartBiCGStab final : public LinearSolver {
   std::string name() const override { return "ldlt_bicgstab"; }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
-    pattern_.factorize(ldlt_, symmetric_part(A));
+    pattern_.factorize(ldlt_, symmetric_.of(A));
     it_.compute(A);
     ok_ = book_factorization(ldlt_.info(), t0, stats_);
     return ok_;
@@ -190,6 +190,7 @@ class SymmetricPartBiCGStab final : public LinearSolver {
 
  private:
   SymmetricPartPreconditioner::Factorization ldlt_;
+  SymmetricPart symmetric_;
   AnalysedPattern pattern_;
   Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner> it_;
   bool ok_ = false;
