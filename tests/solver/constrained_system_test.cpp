@@ -56,3 +56,23 @@ TEST_CASE("SymmetricPart equals (A + A^T)/2 on kept, changed and unsymmetric pat
   const SparseMatrix B = random_structurally_symmetric(60, rng);
   CHECK(max_difference(part.of(B), symmetric_part(B)) == 0);
 }
+
+TEST_CASE("mirror_entries pairs each stored (i, j) with (j, i), or is empty", "[solver]") {
+  std::mt19937 rng(12);
+  const SparseMatrix A = random_structurally_symmetric(80, rng);
+  const std::vector<int> mirror = mirror_entries(A);
+  REQUIRE(mirror.size() == static_cast<size_t>(A.nonZeros()));
+  std::vector<int> column_of(A.nonZeros());
+  for (int j = 0; j < A.outerSize(); ++j)
+    for (int k = A.outerIndexPtr()[j]; k < A.outerIndexPtr()[j + 1]; ++k) column_of[k] = j;
+  int wrong = 0;
+  for (int k = 0; k < A.nonZeros(); ++k)
+    if (A.innerIndexPtr()[mirror[k]] != column_of[k] || column_of[mirror[k]] != A.innerIndexPtr()[k]) ++wrong;
+  CHECK(wrong == 0);
+  SparseMatrix lopsided = A;
+  lopsided.coeffRef(3, 77) = 1.0;
+  lopsided.coeffRef(77, 3) = 0.0;
+  lopsided.prune(0.0);
+  lopsided.makeCompressed();
+  CHECK(mirror_entries(lopsided).empty());
+}

@@ -54,20 +54,24 @@ bool SymmetricPart::same_pattern(const SparseMatrix& A) const {
 }
 
 void SymmetricPart::map_pattern(const SparseMatrix& A) {
-  mirror_.clear();
-  if (!A.isCompressed() || A.rows() != A.cols()) return;
+  mirror_ = mirror_entries(A);
+  if (!mirror_.empty()) S_ = A;
+}
+
+std::vector<int> mirror_entries(const SparseMatrix& A) {
+  if (!A.isCompressed() || A.rows() != A.cols()) return {};
   const int* outer = A.outerIndexPtr();
   const int* inner = A.innerIndexPtr();
+  std::vector<int> next(outer, outer + A.outerSize());  // per column, its first unmatched entry
   std::vector<int> mirror(A.nonZeros());
   for (int j = 0; j < A.outerSize(); ++j)
     for (int k = outer[j]; k < outer[j + 1]; ++k) {
       const int i = inner[k];
-      const int* found = std::lower_bound(inner + outer[i], inner + outer[i + 1], j);
-      if (found == inner + outer[i + 1] || *found != j) return;  // not structurally symmetric
-      mirror[k] = static_cast<int>(found - inner);
+      const int m = next[i]++;
+      if (m >= outer[i + 1] || inner[m] != j) return {};  // (j, i) missing: not structurally symmetric
+      mirror[k] = m;
     }
-  mirror_ = std::move(mirror);
-  S_ = A;
+  return mirror;
 }
 
 namespace {
@@ -86,17 +90,14 @@ void SystemMatrix::build_maps(const BlockJacobian& dfdx, const BlockJacobian* df
   A_ = dfdx.matrix();
   const int n = static_cast<int>(A_.cols());
   const int nnz = static_cast<int>(A_.nonZeros());
-  transpose_.assign(nnz, -1);
+  transpose_ = mirror_entries(A_);
   rows_.assign(A_.innerIndexPtr(), A_.innerIndexPtr() + nnz);
   diagonal_.assign(n, -1);
   for (int j = 0; j < n; ++j)
-    for (int k = A_.outerIndexPtr()[j]; k < A_.outerIndexPtr()[j + 1]; ++k) {
-      transpose_[k] = entry_index(A_, j, rows_[k]);
+    for (int k = A_.outerIndexPtr()[j]; k < A_.outerIndexPtr()[j + 1]; ++k)
       if (rows_[k] == j) diagonal_[j] = k;
-    }
   // BlockJacobian patterns are structurally symmetric with every diagonal block present.
-  if (std::find(transpose_.begin(), transpose_.end(), -1) != transpose_.end() ||
-      std::find(diagonal_.begin(), diagonal_.end(), -1) != diagonal_.end())
+  if (transpose_.size() != static_cast<size_t>(nnz) || std::find(diagonal_.begin(), diagonal_.end(), -1) != diagonal_.end())
     throw Error("SystemMatrix: the Jacobian pattern is not structurally symmetric with a full diagonal");
   dfdv_slot_.clear();
   if (dfdv) {

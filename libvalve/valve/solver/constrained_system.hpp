@@ -18,6 +18,11 @@ void apply_constraints(SparseMatrix& A, VecX& b, const std::vector<char>& constr
 /// (A + Aᵀ)/2.
 SparseMatrix symmetric_part(const SparseMatrix& A);
 
+/// For a compressed matrix whose pattern is structurally symmetric (each stored (i, j) has a
+/// stored (j, i)), the index of each stored entry's mirror; empty for any other pattern.
+/// O(nnz): columns are visited in order, so the mirrors in each column come in row order.
+std::vector<int> mirror_entries(const SparseMatrix& A);
+
 /// (A + Aᵀ)/2 for a sequence of matrices that mostly share one pattern, as symmetric_part()
 /// computes it. A structurally symmetric pattern (the integrators' system matrices are)
 /// keeps A's pattern, and each entry pairs with its mirror through an index map built once
