@@ -39,6 +39,14 @@ BlockJacobian::BlockJacobian(int num_nodes, const std::vector<std::pair<int, int
   set_zero();
 }
 
+std::vector<std::pair<int, int>> BlockJacobian::node_pairs() const {
+  std::vector<std::pair<int, int>> pairs;
+  for (int a = 0; a < n_; ++a)
+    for (int b : column_nodes_[a])
+      if (b > a) pairs.emplace_back(a, b);
+  return pairs;
+}
+
 void BlockJacobian::set_zero() { std::fill_n(m_.valuePtr(), m_.nonZeros(), 0.0); }
 
 int BlockJacobian::position(int i, int j) const {

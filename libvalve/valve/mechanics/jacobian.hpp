@@ -53,6 +53,8 @@ class BlockJacobian {
   /// Identifies the sparsity pattern: a new value for every constructed pattern, so a
   /// consumer that caches index maps over matrix() can tell when to rebuild them.
   long pattern_revision() const { return revision_; }
+  /// The coupled node pairs (a < b) of the pattern, sorted.
+  std::vector<std::pair<int, int>> node_pairs() const;
 
  private:
   int position(int i, int j) const;  // index of node i within node column j's list

@@ -38,12 +38,6 @@ void MechanicalSystem::finalize() {
   std::vector<std::pair<int, int>> pairs;
   for (const auto& t : terms_) t->couplings(pairs);
   dfdx_ = BlockJacobian(n_, pairs);
-  for (auto& [a, b] : pairs)
-    if (a > b) std::swap(a, b);
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
-  pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [](const auto& p) { return p.first == p.second; }), pairs.end());
-  couplings_ = std::move(pairs);
   dfdv_ = BlockJacobian(n_, {});
 }
 

@@ -56,9 +56,11 @@ class MechanicalSystem {
   bool has_velocity_terms() const { return has_velocity_terms_; }
   DampingTerm* damping() { return damping_; }
   const std::vector<TermTiming>& timings() const { return timings_; }
-  /// Unique coupled node pairs (a < b) of all terms, built by finalize(); for mesh edges
-  /// these are the triangle edges (used by solvers to limit strain increments).
-  const std::vector<std::pair<int, int>>& couplings() const { return couplings_; }
+  /// Unique coupled node pairs (a < b) of all terms, sorted, from the Jacobian pattern; for
+  /// mesh edges these are the triangle edges (used by solvers to limit strain increments).
+  /// Computed on request: the pattern changes at every contact coupling added, the
+  /// request comes only from the static solver's strain limit.
+  std::vector<std::pair<int, int>> couplings() const { return dfdx_.node_pairs(); }
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
   /// Smallest max_step_length() of the terms (infinity if none limits the step).
   double max_step_length() const;
@@ -76,7 +78,6 @@ class MechanicalSystem {
   std::vector<std::unique_ptr<ForceTerm>> terms_;
   std::vector<TermTiming> timings_;
   BlockJacobian dfdx_, dfdv_;
-  std::vector<std::pair<int, int>> couplings_;
   bool has_velocity_terms_ = false;
   DampingTerm* damping_ = nullptr;
 };

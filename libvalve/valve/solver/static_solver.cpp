@@ -72,7 +72,9 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
         // Step limits: the trust radius (displacement) and the strain increment of any edge.
         const double longest = largest_node_norm(dx);
         double strain = 0;
-        for (const auto& [a, b] : opt.max_strain_increment > 0 ? sys.couplings() : std::vector<std::pair<int, int>>{}) {
+        const std::vector<std::pair<int, int>> edges =
+            opt.max_strain_increment > 0 ? sys.couplings() : std::vector<std::pair<int, int>>{};
+        for (const auto& [a, b] : edges) {
           const Vec3 e = node3(x, b) - node3(x, a);
           const double l = e.norm();
           if (l > 0) strain = std::max(strain, std::abs((e + node3(dx, b) - node3(dx, a)).norm() - l) / l);
