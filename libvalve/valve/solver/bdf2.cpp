@@ -82,6 +82,19 @@ bool Bdf2Integrator::step(const History& in, double h, double load, History& out
   return out.x.allFinite() && out.v.allFinite();
 }
 
+bool Bdf2Integrator::reverses(const VecX& next, const VecX& now, const VecX& before) const {
+  // The monitor node that moved most in this step; a 2-cycle sends it back along the way it came.
+  int worst = -1;
+  double largest = 0;
+  for (int i : monitor_) {
+    const double d = (node3(next, i) - node3(now, i)).norm();
+    if (d > largest) largest = d, worst = i;
+  }
+  if (worst < 0 || largest <= opt_.settle_tolerance) return false;
+  const Vec3 forward = node3(next, worst) - node3(now, worst), back = node3(now, worst) - node3(before, worst);
+  return forward.dot(back) < -0.5 * forward.norm() * back.norm();
+}
+
 double Bdf2Integrator::max_node_distance(const VecX& a, const VecX& b, bool monitors_only) const {
   double m = 0;
   if (monitors_only) {
@@ -216,12 +229,19 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
       taken = doubling ? 2 : 1;
     }
     restart_ = false;
+    const bool reversed = reverses(half2.x, x_, x_prev_);
     x_prev_ = half2.x_prev;
     v_prev_ = half2.v_prev;
     x_ = half2.x;
     v_ = half2.v;
     t_ += advanced;
     steps += taken;
+    reversals_ = reversed ? reversals_ + 1 : 0;
+    if (opt_.adaptive && reversals_ >= kReversalsBeforeCut) {
+      h_ *= 0.25;
+      reversals_ = 0;
+      ++sum.oscillation_cuts;
+    }
     if (on_accepted) on_accepted(x_, t_);
 
     sum.last_monitor_displacement_mm = max_node_distance(x_, half2.x_prev, true);

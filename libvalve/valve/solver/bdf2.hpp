@@ -19,6 +19,17 @@
 // comes to 0.75, and after an accepted step h grows no further than that target predicts.
 // (Quartering h on every such rejection made a saw-tooth: the aortic valve closure rejected
 // 316 of 1,383 steps on move limits and stepped below them for most of the rest.)
+// Period-2 swings: near a stiffness jump (a chord going taut or slack, a contact pair at
+// the edge of its zone) a linearised step at large h overshoots to the far side and the
+// next one back, and the predictor estimate lets a swing of amplitude A through when 1.6 A
+// is under the tolerance (x^{n+1} = x^{n-1}, x_p = 4 x^n - 3 x^{n-1}). Such a swing never
+// settles: the sample mitral closure with primary chordae only, at a tolerance of 0.2 mm,
+// sent one free-edge node 0.069 mm back and forth at every 50 ms step for 600 s of wall
+// time. So when the monitor node that moves most turns back (by more than 120°, moving
+// more than settle_tolerance) on kReversalsBeforeCut consecutive accepted steps, h is cut
+// by 4, where inertia and damping weigh more against the jump; the same closure then
+// settles in 137 steps. A physical oscillation turns back once per half period, not at
+// every step, and is left alone (tests/solver/bdf2_test.cpp).
 // When h changes, the previous state is re-sampled at the new spacing by quadratic
 // interpolation through x^{n-1}, x^n and v^n. A run starts (and restarts after a load
 // change, where the acceleration jumps) with one implicit Euler step,
@@ -114,6 +125,12 @@ class Bdf2Integrator {
   void reject_failed_step();
   History resampled(double h_new) const;
   double max_node_distance(const VecX& a, const VecX& b, bool monitors_only) const;
+  /// True when the monitor node that moves most from `now` to `next` (more than the settle
+  /// tolerance) turns back by more than 120° against its move from `before` to `now` (see
+  /// "Period-2 swings" above).
+  bool reverses(const VecX& next, const VecX& now, const VecX& before) const;
+  static constexpr int kReversalsBeforeCut = 4;
+  int reversals_ = 0;  // consecutive accepted steps that reversed
 
   MechanicalSystem& sys_;
   Bdf2Options opt_;

@@ -20,6 +20,7 @@ nlohmann::json SolverSummary::to_json() const {
           {"reason", reason},
           {"steps", steps},
           {"rejected_steps", rejected_steps},
+          {"oscillation_cuts", oscillation_cuts},
           {"newton_iterations", newton_iterations},
           {"jacobian_evaluations", jacobian_evaluations},
           {"solver", solver},
@@ -53,6 +54,7 @@ std::string SolverSummary::one_line() const {
 void SolverSummary::accumulate(const SolverSummary& o) {
   steps += o.steps;
   rejected_steps += o.rejected_steps;
+  oscillation_cuts += o.oscillation_cuts;
   newton_iterations += o.newton_iterations;
   jacobian_evaluations += o.jacobian_evaluations;
   simulated_time_ms += o.simulated_time_ms;

@@ -18,6 +18,7 @@ struct SolverSummary {
   std::string reason;
   long steps = 0;               // accepted time steps (BDF2) or load increments (static)
   long rejected_steps = 0;
+  long oscillation_cuts = 0;  // BDF2: steps cut because the state swung back and forth
   long newton_iterations = 0;   // static solver
   long jacobian_evaluations = 0;
   LinearSolverStats linear;
