@@ -33,6 +33,10 @@ MassSpringTerm::MassSpringTerm(const TriMesh& mesh, const BilinearParameters& p,
     const double scale = thickness * area / (l0 * l0);
     springs_.push_back({e.a, e.b, l0, m1 * scale, m2 * scale, ls});
   }
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& sp : springs_)
+    for (const auto& ij : {std::make_pair(sp.a, sp.a), {sp.b, sp.b}, {sp.a, sp.b}, {sp.b, sp.a}}) pairs.push_back(ij);
+  slots_ = BlockSlotCache(std::move(pairs));
 }
 
 void MassSpringTerm::force(const Spring& sp, double l, double& F, double& dF) {
@@ -50,14 +54,16 @@ void MassSpringTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
 }
 
 void MassSpringTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
-  for (const auto& sp : springs_) {
+  const std::vector<BlockSlot>* slots = dfdx ? &slots_.slots(*dfdx) : nullptr;
+  for (std::size_t k = 0; k < springs_.size(); ++k) {
+    const Spring& sp = springs_[k];
     const Vec3 d = node3(s.x, sp.b) - node3(s.x, sp.a);
     const double l = d.norm();
     if (l <= 0) continue;  // coincident nodes: no direction, no force
     const Vec3 n = d / l;
     double F, dF;
     force(sp, l, F, dF);
-    add_axial_pair(sp.a, sp.b, n, l, F, dF, f, dfdx);
+    add_axial_pair(sp.a, sp.b, n, l, F, dF, f, dfdx, slots ? &(*slots)[4 * k] : nullptr);
   }
 }
 

@@ -41,6 +41,7 @@ class MassSpringTerm final : public ForceTerm {
 
  private:
   std::vector<Spring> springs_;
+  mutable BlockSlotCache slots_;  // 4 per spring: (a, a), (b, b), (a, b), (b, a)
 };
 
 }  // namespace valve

@@ -18,6 +18,11 @@ MembraneFETerm::MembraneFETerm(const TriMesh& mesh, std::shared_ptr<const Materi
     const Mat2 Dm_inv = material_frame_inverse(mesh, t, &area);
     elements_.push_back({mesh.triangles[t], Dm_inv, area * thickness});
   }
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& e : elements_)
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) pairs.emplace_back(e.nodes[a], e.nodes[b]);
+  slots_ = BlockSlotCache(std::move(pairs));
 }
 
 void MembraneFETerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
@@ -31,7 +36,9 @@ Voigt MembraneFETerm::green_strain(const VecX& x, int t) const {
 }
 
 void MembraneFETerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
-  for (const auto& e : elements_) {
+  const std::vector<BlockSlot>* slots = dfdx ? &slots_.slots(*dfdx) : nullptr;
+  for (std::size_t k = 0; k < elements_.size(); ++k) {
+    const Element& e = elements_[k];
     const Mat32 F = deformation_gradient(s.x, e.nodes, e.Dm_inv);
     const Voigt E = valve::green_strain(F);
     Voigt S;
@@ -62,7 +69,7 @@ void MembraneFETerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJaco
         const double geo = gradN.col(a).dot(S2 * gradN.col(b));
         Mat3 K = BtD * B[b];
         K.diagonal().array() += geo;
-        dfdx->add(e.nodes[a], e.nodes[b], -e.volume * K);
+        dfdx->add((*slots)[9 * k + 3 * a + b], -e.volume * K);
       }
     }
   }

@@ -43,6 +43,7 @@ class MembraneFETerm final : public ForceTerm {
   };
   std::vector<Element> elements_;
   std::shared_ptr<const MaterialLaw> law_;
+  mutable BlockSlotCache slots_;  // 9 per element: (nodes[a], nodes[b]), a major
 };
 
 }  // namespace valve
