@@ -54,11 +54,8 @@ void Voxelizer::add_sheet(const MatX3& points, const std::vector<Tri>& triangles
 void Voxelizer::add_tubes(const std::vector<std::pair<Vec3, Vec3>>& segments, double diameter) {
   const double radius = diameter / 2, margin = radius + ramp_width_;
   for (const auto& [a, b] : segments) {
-    const Vec3 ab = b - a;
-    const double len2 = std::max(ab.squaredNorm(), 1e-300);
     for_voxels_near(a.cwiseMin(b), a.cwiseMax(b), margin, [&](std::size_t v, const Vec3& p) {
-      const double s = std::clamp((p - a).dot(ab) / len2, 0.0, 1.0);
-      const double d = (p - (a + s * ab)).norm();
+      const double d = point_segment_distance(p, a, b);
       const float f = static_cast<float>(std::clamp(0.5 - (d - radius) / ramp_width_, 0.0, 1.0));
       occupancy_[v] = std::max(occupancy_[v], f);
     });

@@ -3,6 +3,7 @@
 // here rather than taken from CGAL because contact forces and surface distances need the
 // barycentric weights of the closest point, which CGAL's squared_distance does not return,
 // and contact calls them in its inner loop.
+#include <algorithm>
 #include <utility>
 
 #include "valve/core/types.hpp"
@@ -15,6 +16,13 @@ int nearest_point_index(const MatX3& points, const Vec3& p, double* distance = n
 
 /// Closest point of triangle (a, b, c) to p as barycentric weights (w_a, w_b, w_c).
 Vec3 closest_point_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+/// Distance from p to the segment (a, b) (to a when the segment has no length). Inline: the
+/// voxelizer calls it for every voxel near a tube.
+inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double s = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+  return (p - (a + s * ab)).norm();
+}
 /// Parameters (s, t) of the closest points a + s (b − a), c + t (d − c) of two segments.
 std::pair<double, double> closest_segment_parameters(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 

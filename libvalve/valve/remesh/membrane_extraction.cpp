@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "valve/core/error.hpp"
+#include "valve/mesh/closest_point.hpp"
 #include "valve/mesh/topology.hpp"
 
 namespace valve {
@@ -196,11 +197,7 @@ int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& a
     for (int n : loop) {
       const Vec3 p = mesh.points.row(n).transpose();
       double d = std::numeric_limits<double>::infinity();
-      for (const auto& [a, b] : annulus) {
-        const Vec3 ab = b - a;
-        const double t = ab.squaredNorm() > 0 ? std::clamp((p - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-        d = std::min(d, (p - a - t * ab).norm());
-      }
+      for (const auto& [a, b] : annulus) d = std::min(d, point_segment_distance(p, a, b));
       nearest = std::min(nearest, d);
       if (d <= tolerance) near[n] = 1, ++marked;
     }
