@@ -168,6 +168,7 @@ SolverSummary Bdf2Integrator::run(double load, const StepObserver& observer) {
   sum.linear_solver = solver_->name();
   const long jac0 = jacobians_;
   restart_ = true;  // the load may have changed: the acceleration jumps
+  reversals_ = 0;   // a swing is counted within one load level
   int quiet = 0;
   VecX settle_anchor = x_;  // positions at the start of the current settle window
   double settle_start = t_;

@@ -15,6 +15,7 @@
 
 #include "valve/core/error.hpp"
 #include "valve/solver/constrained_system.hpp"
+#include "valve/solver/node_block_ordering.hpp"
 
 namespace valve {
 namespace {
@@ -35,6 +36,8 @@ template <class M, int UpLo>
 void silence(Eigen::CholmodSimplicialLDLT<M, UpLo>& d) {
   d.cholmod().print = 0;
 }
+
+using NodeBlockLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, NodeBlockAmdOrdering<SparseMatrix::StorageIndex>>;
 
 // The pattern a decomposition was last analysed for. Contact grows the Jacobian pattern
 // during a solve, so the symbolic analysis is redone only when the pattern changes.
@@ -149,7 +152,7 @@ class IterativeSolver final : public LinearSolver {
 // Eigen preconditioner interface over a factorization owned by the solver below.
 class SymmetricPartPreconditioner {
  public:
-  using Factorization = Eigen::SimplicialLDLT<SparseMatrix>;
+  using Factorization = NodeBlockLdlt;
   template <class M>
   SymmetricPartPreconditioner& analyzePattern(const M&) { return *this; }
   template <class M>
@@ -260,7 +263,7 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
     case LinearSolverType::cholmod_ldlt:
       return std::make_unique<DirectSolver<Eigen::CholmodSimplicialLDLT<SparseMatrix>>>("cholmod_ldlt", true);
     case LinearSolverType::ldlt:
-      return std::make_unique<DirectSolver<Eigen::SimplicialLDLT<SparseMatrix>>>("ldlt", true);
+      return std::make_unique<DirectSolver<NodeBlockLdlt>>("ldlt", true);
     case LinearSolverType::lu:
       return std::make_unique<DirectSolver<Eigen::SparseLU<SparseMatrix>>>("lu", false);
     case LinearSolverType::umfpack:
