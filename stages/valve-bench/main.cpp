@@ -19,13 +19,14 @@
 #include "valve/mesh/validate.hpp"
 #include "valve/scene/benchmark.hpp"
 #include "valve/solver/linear_solver.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   limit_blas_threads_unless_set();
-  return run_stage("valve-bench", [&] {
+  return run_stage("valve-bench", kStageUsage, [&] {
     CommandLine cl(argc, argv, {"scene", "out", "mesh", "repetitions", "set"}, {"quiet", "broad-phase"});
     const fs::path scene_file = cl.require("scene");
     const fs::path out = cl.require("out");

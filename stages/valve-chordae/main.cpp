@@ -28,12 +28,13 @@
 #include "valve/io/chordae_io.hpp"
 #include "valve/io/image_io.hpp"
 #include "valve/io/mesh_io.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  return run_stage("valve-chordae", [&] {
+  return run_stage("valve-chordae", kStageUsage, [&] {
     const std::vector<std::string> keys{"mesh", "from", "markups", "labels", "snap-tolerance", "merge-distance",
                                         "insertion-distance", "min-spur", "scale", "name"};
     CommandLine cl(argc, argv,

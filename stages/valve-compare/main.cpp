@@ -28,6 +28,7 @@
 #include "valve/core/error.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/closest_point.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
@@ -49,7 +50,7 @@ Eigen::MatrixXd column(const std::vector<double>& d) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_stage("valve-compare", [&] {
+  return run_stage("valve-compare", kStageUsage, [&] {
     CommandLine cl(argc, argv, {"out", "correspondence", "register", "sections"}, {"quiet"});
     if (cl.positional().size() != 2)
       throw InputError("valve-compare: expected SIMULATED.vtp REFERENCE.vtp, found " + std::to_string(cl.positional().size()) +

@@ -18,6 +18,7 @@
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/generators.hpp"
 #include "valve/mesh/quality.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
@@ -36,7 +37,7 @@ double parse_number(const CommandLine& cl, const std::string& flag, double fallb
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_stage("valve-generate", [&] {
+  return run_stage("valve-generate", kStageUsage, [&] {
     CommandLine cl(argc, argv,
                    {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name", "jitter",
                     "relax-iterations", "gamma", "commissure-height", "graft-leaflet", "graft-width-pct", "graft-height-pct"},

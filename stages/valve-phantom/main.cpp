@@ -34,6 +34,7 @@
 #include "valve/io/abaqus_inp.hpp"
 #include "valve/io/image_io.hpp"
 #include "valve/io/mesh_io.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
@@ -163,7 +164,7 @@ PhantomGeometry surface_geometry(StageArguments& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_stage("valve-phantom", [&] {
+  return run_stage("valve-phantom", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "spacing", "seed", "variation", "thickness", "chord_diameter", "blur",
                                            "noise", "tissue", "background", "margin", "format", "inp", "frame", "mesh", "lines"};
     std::vector<std::string> flags;

@@ -20,15 +20,12 @@
 #include "valve/pipeline/pipeline_spec.hpp"
 #include "valve/pipeline/process.hpp"
 #include "valve/pipeline/runner.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 namespace {
-
-const char* usage =
-    "usage: valve-pipeline run P.json --out DIR [--jobs N] [--run ID ...] [--force] [--dry-run] [--stage-dir D ...] [--quiet]\n"
-    "       valve-pipeline list P.json [--out DIR] [--stage-dir D ...]\n";
 
 int parse_jobs(const CommandLine& cl) {
   const auto v = cl.get("jobs");
@@ -101,12 +98,8 @@ int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_stage("valve-pipeline", [&] {
-    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir", "run"}, {"quiet", "help", "force", "dry-run"});
-    if (cl.has("help")) {
-      std::printf("%s", usage);
-      return 0;
-    }
+  return run_stage("valve-pipeline", kStageUsage, [&] {
+    CommandLine cl(argc, argv, {"out", "jobs", "stage-dir", "run"}, {"quiet", "force", "dry-run"});
     const auto& pos = cl.positional();
     if (pos.size() != 2 || (pos[0] != "run" && pos[0] != "list"))
       throw InputError("valve-pipeline: command: expected \"run P.json\" or \"list P.json\", found " +

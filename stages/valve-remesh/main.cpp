@@ -24,6 +24,7 @@
 #include "valve/mesh/subdivide.hpp"
 #include "valve/remesh/membrane_extraction.hpp"
 #include "valve/remesh/remesher.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
@@ -43,7 +44,7 @@ nlohmann::json shape_json(const MeshShapeReport& r) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_stage("valve-remesh", [&] {
+  return run_stage("valve-remesh", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "viewpoint_height", "thickness", "subdivide", "reference", "annulus_from", "annulus_tolerance"};
     CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference", "annulus-from", "annulus-tolerance"},
                    {"no-offset", "input-is-membrane", "write-membrane", "quiet"});

@@ -15,6 +15,7 @@
 #include "valve/core/error.hpp"
 #include "valve/io/render.hpp"
 #include "valve/pipeline/process.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
@@ -41,7 +42,7 @@ int main(int argc, char** argv) {
     args.push_back(nullptr);
     execvp("xvfb-run", args.data());  // returns only on failure: fall through to the skip path
   }
-  return run_stage("valve-render", [&] {
+  return run_stage("valve-render", kStageUsage, [&] {
     CommandLine cl(argc, argv, {"out", "array", "range", "views", "axis", "title", "size"}, {"quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-render: expected one MESH.vtp argument, found " + std::to_string(cl.positional().size()));

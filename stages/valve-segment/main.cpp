@@ -16,6 +16,7 @@
 #include "valve/core/stage_arguments.hpp"
 #include "valve/imaging/segmentation.hpp"
 #include "valve/io/image_io.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
@@ -34,7 +35,7 @@ double default_memory_limit() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  return run_stage("valve-segment", [&] {
+  return run_stage("valve-segment", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "crop_min", "crop_max", "denoise", "gaussian_sigma", "median_radius",
                                            "diffusion_iterations", "threshold", "seed", "closing_radius",
                                            "chordae_opening_radius", "min_component", "max_memory"};

@@ -29,13 +29,14 @@
 #include "valve/mesh/validate.hpp"
 #include "valve/scene/biaxial_protocol.hpp"
 #include "valve/scene/simulation.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   limit_blas_threads_unless_set();
-  return run_stage("valve-simulate", [&] {
+  return run_stage("valve-simulate", kStageUsage, [&] {
     CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set"}, {"time-series", "quiet"});
     const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");
     const fs::path out = cl.require("out");

@@ -13,12 +13,13 @@
 #include "valve/io/image_io.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/quality.hpp"
+#include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
-  return run_stage("valve-triangulate", [&] {
+  return run_stage("valve-triangulate", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "labels", "smoothing_iterations", "pass_band", "largest_only"};
     CommandLine cl(argc, argv, {"out", "config", "name", "labels", "smoothing-iterations", "pass-band"}, {"largest-only", "quiet"});
     if (cl.positional().size() != 1)

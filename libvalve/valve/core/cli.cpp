@@ -29,6 +29,8 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
       if (x == s) return true;
     return false;
   };
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") throw HelpRequested{};
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a.rfind("--", 0) != 0) {
@@ -54,7 +56,7 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
       std::string known;
       for (const auto& f : flags) known += " --" + f;
       for (const auto& f : switches) known += " --" + f;
-      throw InputError(program_ + ": " + a + ": expected one of" + known + ", found an unknown option");
+      throw InputError(program_ + ": " + a + ": expected one of" + known + ", found an unknown option (--help prints the usage)");
     }
   }
 }
@@ -133,9 +135,12 @@ void StageSummary::write() {
   write_file_atomic(out_ / (stage_ + ".summary.json"), doc_.dump(2) + "\n");
 }
 
-int run_stage(const std::string& program, const std::function<int()>& body) {
+int run_stage(const std::string& program, const char* usage, const std::function<int()>& body) {
   try {
     return body();
+  } catch (const HelpRequested&) {
+    std::printf("%s", usage);
+    return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return 2;

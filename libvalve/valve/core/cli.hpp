@@ -11,9 +11,13 @@
 
 namespace valve {
 
+/// Thrown by CommandLine when --help or -h is given; run_stage() prints the usage, exit 0.
+struct HelpRequested {};
+
 class CommandLine {
  public:
   /// `flags` lists the accepted --options taking a value; `switches` those without one.
+  /// --help or -h anywhere throws HelpRequested before anything else is checked.
   /// A flag may repeat (get() returns the last value, get_all() every value in order).
   CommandLine(int argc, char** argv, const std::vector<std::string>& flags, const std::vector<std::string>& switches);
   std::optional<std::string> get(const std::string& flag) const;
@@ -53,8 +57,9 @@ class StageSummary {
 };
 
 /// Runs a stage body and maps exceptions to the exit-code contract, printing one line
-/// "<program>: error: <message>" on stderr.
-int run_stage(const std::string& program, const std::function<int()>& body);
+/// "<program>: error: <message>" on stderr. On HelpRequested prints `usage` on stdout
+/// (stages pass kStageUsage, their main.cpp's leading comment) and returns 0.
+int run_stage(const std::string& program, const char* usage, const std::function<int()>& body);
 
 /// Replaces non-finite numbers by null, recursively (JSON has no NaN; a summary must
 /// never carry one silently). Returns the number of values replaced.

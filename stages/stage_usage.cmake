@@ -1,0 +1,17 @@
+# cmake -DSOURCE=stage/main.cpp -DOUTPUT=stage_usage.hpp -P stage_usage.cmake
+# A stage's --help text is its main.cpp's leading comment block (usage, what it reads and
+# writes, exit codes), so the documentation and the help cannot drift apart.
+file(READ "${SOURCE}" content)
+string(REGEX MATCH "^(//[^\n]*\n)+" header "${content}")
+if(header STREQUAL "")
+  message(FATAL_ERROR "${SOURCE}: expected a leading // comment block with the stage's usage, found none")
+endif()
+string(REGEX REPLACE "(^|\n)// ?" "\\1" text "${header}")
+set(generated "// Generated from ${SOURCE} by stages/stage_usage.cmake.\n#pragma once\ninline constexpr const char* kStageUsage = R\"usage(${text})usage\";\n")
+if(EXISTS "${OUTPUT}")
+  file(READ "${OUTPUT}" previous)
+  if(previous STREQUAL generated)
+    return()
+  endif()
+endif()
+file(WRITE "${OUTPUT}" "${generated}")
