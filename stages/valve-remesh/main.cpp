@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
     m["atrial_direction_estimated"] = ms.direction_estimated;
     m["extraction"] = {{"faces_in", ms.faces_in}, {"faces_kept", ms.faces_kept}, {"pieces_kept", ms.pieces_kept},
                        {"pieces_dropped", ms.pieces_dropped}, {"area_mm2", ms.area_mm2}};
-    m["remesh"] = {{"target_edge_length_mm", rs.target_edge_length}, {"attempts", rs.attempts}, {"holes_filled", rs.holes_filled}, {"border_repairs", rs.border_repairs}, {"flap_triangles_cut", rs.flaps_cut}};
+    m["remesh"] = {{"target_edge_length_mm", rs.target_edge_length}, {"attempts", rs.attempts}, {"holes_filled", rs.holes_filled}, {"border_repairs", rs.border_repairs}, {"border_vertices_snapped", rs.border_snapped}, {"flap_triangles_cut", rs.flaps_cut}};
     int annulus_nodes = 0, free_edge_nodes = 0;
     for (BoundaryType b : mesh.boundary) annulus_nodes += b == BoundaryType::attached, free_edge_nodes += b == BoundaryType::free_edge;
     m["boundary_loops"] = loops;

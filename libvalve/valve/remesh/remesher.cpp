@@ -145,8 +145,8 @@ Segments border_segments(const Mesh& m) {
 }
 
 // Moves border vertices back onto the input's border (their closest point there), each as
-// far as its triangles stay at or above `min_quality` (or no worse than before): the whole
-// way, or 3/4, 1/2, 1/4 of it. Isotropic remeshing relaxes border vertices along the coarse
+// far as its triangles stay at or above min_quality + kSnapQualityHeadroom (or no worse than
+// before): the whole way, or 3/4, 1/2, 1/4 of it. Returns the number of vertices moved. Isotropic remeshing relaxes border vertices along the coarse
 // border it has made and projects only interior ones back onto the input, and the collapse
 // route places border vertices at edge midpoints: on the Texas TriValve deck's mid-surface
 // (0.5 mm border edges, 2.3 mm target) the border vertices ended 1.0-1.1 mm off the input
@@ -354,7 +354,7 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
   // What remeshing leaves at the border, in order: narrow-necked flaps, slivers, and slivers'
   // vertices that can still move. Returns the triangles cut; counts repairs in s.
   auto clean_up = [&](Mesh& m, double edge_length) {
-    if (!input_border.empty()) snap_border_vertices(m, border_tree, o.min_border_quality);
+    s.border_snapped = input_border.empty() ? 0 : snap_border_vertices(m, border_tree, o.min_border_quality);
     PMP::angle_and_area_smoothing(faces(m), m, PMP::parameters::number_of_iterations(5).use_area_smoothing(false));
     const int cut = cut_narrow_flaps(m, o.max_neck * edge_length, 8);
     s.border_repairs = repair_border_slivers(m, o.min_border_quality);
@@ -364,7 +364,7 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
 
   Mesh best;
   std::size_t best_error = std::size_t(-1);
-  int repairs = 0, flaps = 0;
+  int repairs = 0, flaps = 0, snapped = 0;
   if (o.method == "isotropic") {
     double length = std::sqrt(4 * area / (std::sqrt(3.0) * target));
     for (int attempt = 0; attempt < o.max_attempts; ++attempt) {
@@ -378,12 +378,14 @@ TriMesh remesh_membrane(const TriMesh& membrane, const RemeshOptions& o, RemeshS
       ++s.attempts;
       const std::size_t found = m.number_of_faces();
       const std::size_t error = found > std::size_t(target) ? found - target : target - found;
-      if (error < best_error) best_error = error, best = m, s.target_edge_length = length, repairs = s.border_repairs, flaps = s.flaps_cut;
+      if (error < best_error) best_error = error, best = m, s.target_edge_length = length, repairs = s.border_repairs, flaps = s.flaps_cut,
+                                  snapped = s.border_snapped;
       if (error <= o.tolerance * target || found == 0) break;
       length *= std::sqrt(double(found) / target);
     }
     s.border_repairs = repairs;
     s.flaps_cut = flaps;
+    s.border_snapped = snapped;
     s.count_within_tolerance = best_error <= o.tolerance * target;
   } else {
     // Collapse to the edge count of the target: 3F = 2E − B, with the border count B

@@ -10,6 +10,8 @@
 //   collapse   the seed's route: shortest-edge collapses (Surface_mesh_simplification) down
 //              to the target, then tangential relaxation as equal-rest-length springs
 //              would do.
+// After remeshing, border vertices are put back on the input's border as far as their
+// triangles' quality allows (CGAL leaves them on the coarse border it makes, up to 1 mm off).
 // The mid-surface offset moves every node against its normal after remeshing, where the
 // normals are smooth at the scale of the edges (on the voxel-scale surface they turn sharply at
 // the border and the offset would fold it); the border slivers it makes where the surface
@@ -43,6 +45,7 @@ struct RemeshSummary {
   int attempts = 0;
   int holes_filled = 0;
   int border_repairs = 0;
+  int border_snapped = 0;  // border vertices moved back onto the input's border
   int flaps_cut = 0;  // triangles of narrow-necked flaps removed
   bool count_within_tolerance = true;  // false: the closest count found is returned
   int input_triangles = 0;
