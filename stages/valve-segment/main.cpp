@@ -2,10 +2,14 @@
 //               [--crop-min x,y,z --crop-max x,y,z] [--denoise gaussian|median|none]
 //               [--gaussian-sigma 0.15] [--median-radius 1] [--diffusion-iterations 0]
 //               [--threshold otsu|VALUE] [--seed x,y,z ...] [--closing-radius 0.2]
-//               [--chordae-opening-radius 0.3] [--min-component 0.5] [--max-memory GB] [--quiet]
+//               [--chordae-method opening|hessian] [--chordae-opening-radius 0.3]
+//               [--tube-scale 0.25] [--tube-ratio 0.5] [--tube-ridge-offset 0.35] [--sheet-ratio 0.1] [--tube-growth 2]
+//               [--notch-closing-radius 0.75] [--min-component 0.5] [--max-memory GB] [--quiet]
 // IMAGE: .nrrd .nhdr .mha .mhd .nii .nii.gz or a DICOM series directory. Writes the label
 // map DIR/NAME.nrrd (1 leaflet, 2 chordae, 3 other tissue) and segment.summary.json with the
-// threshold used, voxel counts and components. Physical coordinates (LPS, mm) throughout.
+// threshold used, voxel counts and components. Chordae are told from leaflets by a
+// morphological opening (chords thinner than leaflets) or by the Hessian's shape measure
+// (tubes vs sheets; for chords as thick as the leaflets). Physical coordinates (LPS, mm) throughout.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -38,10 +42,13 @@ int main(int argc, char** argv) {
   return run_stage("valve-segment", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "crop_min", "crop_max", "denoise", "gaussian_sigma", "median_radius",
                                            "diffusion_iterations", "threshold", "seed", "closing_radius",
-                                           "chordae_opening_radius", "min_component", "max_memory"};
+                                           "chordae_method", "chordae_opening_radius", "tube_scale", "tube_ratio", "tube_ridge_offset", "sheet_ratio",
+                                           "tube_growth", "notch_closing_radius",
+                                           "min_component", "max_memory"};
     CommandLine cl(argc, argv,
                    {"out", "config", "name", "crop-min", "crop-max", "denoise", "gaussian-sigma", "median-radius",
-                    "diffusion-iterations", "threshold", "seed", "closing-radius", "chordae-opening-radius", "min-component",
+                    "diffusion-iterations", "threshold", "seed", "closing-radius", "chordae-method", "chordae-opening-radius",
+                    "tube-scale", "tube-ratio", "tube-ridge-offset", "sheet-ratio", "tube-growth", "notch-closing-radius", "min-component",
                     "max-memory"},
                    {"quiet"});
     if (cl.positional().size() != 1)
@@ -67,11 +74,20 @@ int main(int argc, char** argv) {
     }
     o.seeds = args.points("seed");
     o.closing_radius = args.length_mm("closing-radius", o.closing_radius, 0, 20);
+    o.chordae_method = args.choice("chordae-method", o.chordae_method, {"opening", "hessian"});
     o.chordae_opening_radius = args.length_mm("chordae-opening-radius", o.chordae_opening_radius, 0, 20);
+    o.tube_scale = args.length_mm("tube-scale", o.tube_scale, 0.01, 20);
+    o.tube_ratio = args.number("tube-ratio", o.tube_ratio, 0.01, 1);
+    o.tube_ridge_offset = args.length_mm("tube-ridge-offset", o.tube_ridge_offset, 0, 20);
+    o.sheet_ratio = args.number("sheet-ratio", o.sheet_ratio, 0, 1);
+    o.tube_growth_voxels = static_cast<int>(args.integer("tube-growth", o.tube_growth_voxels, 0, 10));
+    o.notch_closing_radius = args.length_mm("notch-closing-radius", o.notch_closing_radius, 0, 20);
     o.min_component_mm3 = args.number("min-component", o.min_component_mm3, 0, 1e9);
     ImageReadOptions read;
     read.max_bytes = args.number("max-memory", default_memory_limit() / 1e9, 0.001, 1e6) * 1e9;
-    read.working_copies = 6;  // float input, smoothed copy, masks and 32-bit component labels
+    // Float input, smoothed copy, masks and 32-bit component labels; the Hessian adds a
+    // six-float tensor per voxel.
+    read.working_copies = o.chordae_method == "hessian" ? 12 : 6;
     o.validate("valve-segment");
 
     const Volume volume = read_volume(image_file, read);
@@ -96,6 +112,7 @@ int main(int argc, char** argv) {
         {"components", s.components},
         {"leaflet_components", s.leaflet_components},
         {"chordae_separated", s.chordae_separated},
+        {"chordae_method", o.chordae_method},
         {"chordae_pieces", s.chordae_pieces}};
     summary.write();
     if (!cl.has("quiet"))
