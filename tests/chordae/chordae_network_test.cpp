@@ -1,6 +1,7 @@
 // chordae.json: the phantom's network survives a round trip, and the network checks that
 // issue 5 names (zero-length chord, tree without a papillary tip) reject bad files.
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "valve/chordae/chordae_network.hpp"
 #include "valve/core/error.hpp"
@@ -77,4 +78,36 @@ TEST_CASE("a scale multiplies an explicit rest length too", "[chordae]") {
   const ChordaeNetwork plain = read_chordae_json(small_tree(), "c.json");
   const double open = (plain.points[plain.segments[0].from].position - plain.points[plain.segments[0].to].position).norm();
   CHECK(plain.rest_length(0) == Approx(open));
+}
+
+TEST_CASE("chords of a type keep the trunks that carry them", "[chordae]") {
+  // Two tips; a secondary trunk from tip 0 to a branch with a primary and a secondary chord;
+  // a second route to the branch from tip 5, longer (14 mm against 10 mm); a secondary chord
+  // straight from tip 5 to the leaflet.
+  const ChordaeNetwork net = read_chordae_json(nlohmann::json::parse(R"({
+    "points": [{"kind": "papillary_tip", "position": [0, 0, -20]},
+               {"kind": "branch", "position": [0, 0, -10]},
+               {"kind": "insertion", "position": [1, 0, 0], "mesh_node": 4},
+               {"kind": "insertion", "position": [-1, 0, 0], "mesh_node": 7},
+               {"kind": "branch", "position": [0, 10, -10]},
+               {"kind": "papillary_tip", "position": [0, 14, -10]},
+               {"kind": "insertion", "position": [0, 14, 0], "mesh_node": 9}],
+    "segments": [{"from": 0, "to": 1, "type": "secondary"},
+                 {"from": 1, "to": 2, "type": "primary"},
+                 {"from": 1, "to": 3, "type": "secondary"},
+                 {"from": 1, "to": 4, "type": "secondary"},
+                 {"from": 4, "to": 5, "type": "secondary"},
+                 {"from": 5, "to": 6, "type": "secondary"}]})"), "c.json");
+  const ChordaeNetwork primary = chords_of_types(net, {"primary"});
+  REQUIRE(primary.segments.size() == 2);  // the primary chord and the 10 mm trunk, not the 14 mm route
+  CHECK(primary.count(ChordType::primary) == 1);
+  CHECK(primary.count(ChordPointKind::papillary_tip) == 1);
+  CHECK(primary.count(ChordPointKind::insertion) == 1);
+  double length = 0;
+  for (int s = 0; s < 2; ++s) length += primary.rest_length(s);
+  CHECK(length == Approx(10 + std::sqrt(101.0)));
+  // Every type: the whole network; secondary only: everything but the primary chord.
+  CHECK(chords_of_types(net, {"primary", "secondary", "strut"}).segments.size() == net.segments.size());
+  CHECK(chords_of_types(net, {"secondary"}).segments.size() == net.segments.size() - 1);
+  CHECK(chords_of_types(net, {"strut"}).segments.empty());
 }

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <numeric>
+#include <queue>
 
 #include "valve/config/json_reader.hpp"
 #include "valve/core/error.hpp"
@@ -58,6 +61,56 @@ nlohmann::json to_json(const ChordaeNetwork& network) {
     segments.push_back(j);
   }
   return {{"diameter_mm", network.diameter}, {"points", points}, {"segments", segments}};
+}
+
+ChordaeNetwork chords_of_types(const ChordaeNetwork& in, const std::vector<std::string>& types) {
+  const int n = static_cast<int>(in.points.size());
+  std::vector<std::vector<int>> incident(n);
+  for (int s = 0; s < static_cast<int>(in.segments.size()); ++s) {
+    incident[in.segments[s].from].push_back(s);
+    incident[in.segments[s].to].push_back(s);
+  }
+  // Dijkstra from every papillary tip: distance to the nearest tip and the segment toward it.
+  std::vector<double> distance(n, std::numeric_limits<double>::infinity());
+  std::vector<int> toward_tip(n, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int p = 0; p < n; ++p)
+    if (in.points[p].kind == ChordPointKind::papillary_tip) distance[p] = 0, queue.push({0.0, p});
+  while (!queue.empty()) {
+    const auto [d, p] = queue.top();
+    queue.pop();
+    if (d > distance[p]) continue;
+    for (int s : incident[p]) {
+      const int q = in.segments[s].from == p ? in.segments[s].to : in.segments[s].from;
+      const double dq = d + in.unscaled_rest_length(s);
+      if (dq < distance[q]) distance[q] = dq, toward_tip[q] = s, queue.push({dq, q});
+    }
+  }
+  std::vector<char> keep(in.segments.size(), 0);
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    if (std::find(types.begin(), types.end(), to_string(in.segments[s].type)) == types.end()) continue;
+    keep[s] = 1;
+    const ChordSegment& seg = in.segments[s];
+    for (int p = distance[seg.from] <= distance[seg.to] ? seg.from : seg.to; toward_tip[p] >= 0;) {
+      const int t = toward_tip[p];
+      keep[t] = 1;
+      p = in.segments[t].from == p ? in.segments[t].to : in.segments[t].from;
+    }
+  }
+  ChordaeNetwork out;
+  out.diameter = in.diameter;
+  std::vector<int> index(n, -1);
+  for (std::size_t s = 0; s < in.segments.size(); ++s) {
+    if (!keep[s]) continue;
+    ChordSegment t = in.segments[s];
+    for (int* p : {&t.from, &t.to}) {
+      if (index[*p] < 0) index[*p] = static_cast<int>(out.points.size()), out.points.push_back(in.points[*p]);
+      *p = index[*p];
+    }
+    out.segments.push_back(t);
+  }
+  return out;
 }
 
 ChordaeNetwork read_chordae_json(const nlohmann::json& doc, const std::string& file) {

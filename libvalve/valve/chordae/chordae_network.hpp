@@ -56,6 +56,13 @@ const char* to_string(ChordPointKind kind);
 const char* to_string(ChordType type);
 nlohmann::json to_json(const ChordaeNetwork& network);
 
+/// The chords of the listed types with the trunks that carry them: every segment of those
+/// types, plus, for each, the shortest path (in rest length) from its end nearer a papillary
+/// tip to a tip through segments of any type. Typing is per segment and a trunk may carry
+/// another type's name (the Texas TriValve deck types every trunk secondary), yet a primary
+/// chord without its trunk hangs loose. Kept segments keep their types; points are renumbered.
+ChordaeNetwork chords_of_types(const ChordaeNetwork& network, const std::vector<std::string>& types);
+
 /// Reads chordae.json (the form above), checking it as a network: every segment joins two
 /// distinct existing points, no chord has zero length, insertions are segment ends, and every
 /// insertion is connected to a papillary tip. Errors name the file and the key

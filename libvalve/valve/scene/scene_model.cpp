@@ -9,26 +9,6 @@ namespace valve {
 
 namespace {
 
-// Keeps the segments of the listed types and the points they use.
-ChordaeNetwork keep_types(const ChordaeNetwork& in, const std::vector<std::string>& types) {
-  ChordaeNetwork out;
-  out.diameter = in.diameter;
-  std::vector<int> index(in.points.size(), -1);
-  for (const ChordSegment& s : in.segments) {
-    if (std::find(types.begin(), types.end(), to_string(s.type)) == types.end()) continue;
-    for (int p : {s.from, s.to})
-      if (index[p] < 0) {
-        index[p] = static_cast<int>(out.points.size());
-        out.points.push_back(in.points[p]);
-      }
-    ChordSegment t = s;
-    t.from = index[s.from];
-    t.to = index[s.to];
-    out.segments.push_back(t);
-  }
-  return out;
-}
-
 // Starting guess for the free nodes when some nodes are moved by `displacement`: each free
 // node moves by the inverse-square-distance weighted mean of the moved nodes' displacements
 // (Shepard interpolation), so the first equilibrium solve starts without folded triangles.
@@ -85,7 +65,7 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
           (p.mesh_node >= leaflets.num_nodes() || (leaflets.points.row(p.mesh_node).transpose() - p.position).norm() > 1e-6))
         p.mesh_node = -1;
     snap_insertions(net, leaflets.points, cc.snap_tolerance, cc.file.string());
-    net = keep_types(net, cc.types);
+    net = chords_of_types(net, cc.types);
     if (net.segments.empty())
       throw_input_error(sc.file.string(), "chordae.types", "types present in " + cc.file.string(), "no chord of those types");
     for (ChordSegment& s : net.segments) s.scale *= cc.rest_length_scale;

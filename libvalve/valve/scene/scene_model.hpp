@@ -15,7 +15,7 @@ namespace valve {
 struct SceneModel {
   TriMesh mesh;             // leaflets, then chordae nodes; start positions include the annulus motion
   int leaflet_nodes = 0;
-  std::optional<ChordaeNetwork> chordae;  // snapped to the mesh, filtered by chordae.types
+  std::optional<ChordaeNetwork> chordae;  // snapped to the mesh, chordae.types with their trunks
   ChordaeAttachment attachment;           // rods and chordae node masses (empty without chordae)
   std::optional<AnnulusTargets> annulus;
 
