@@ -8,7 +8,8 @@
 //   - chordae_method "hessian": tissue voxels whose smoothed image is tube-shaped are removed
 //     instead (Hessian eigenvalues |l1| <= |l2| <= |l3| at scale tube_scale: a bright tube has
 //     l2 and l3 both negative and alike, a bright sheet only l3; tube when l2/l3 >= tube_ratio,
-//     grown into the tube's surface voxels that are not clearly sheet, l2/l3 >= sheet_ratio);
+//     grown into the tube's surface voxels that are not clearly inside a sheet: l2/l3 >=
+//     sheet_ratio, or some eigenvalue >= 0);
 //     the leaflet label is then closed within the tissue by notch_closing_radius, because
 //     the tubes bite notches into the leaflet where chords insert.
 //     Shape, not thickness, tells chords from leaflets, so it also works where both are equally
