@@ -85,9 +85,9 @@ int main(int argc, char** argv) {
     o.min_component_mm3 = args.number("min-component", o.min_component_mm3, 0, 1e9);
     ImageReadOptions read;
     read.max_bytes = args.number("max-memory", default_memory_limit() / 1e9, 0.001, 1e6) * 1e9;
-    // Float input, smoothed copy, masks and 32-bit component labels; the Hessian adds a
-    // six-float tensor per voxel.
-    read.working_copies = o.chordae_method == "hessian" ? 12 : 6;
+    // Float input, smoothed copy, masks and 32-bit component labels; the Hessian method adds
+    // a six-float tensor, a three-float gradient and the filters' intermediate float images.
+    read.working_copies = o.chordae_method == "hessian" ? 18 : 6;
     o.validate("valve-segment");
 
     const Volume volume = read_volume(image_file, read);

@@ -117,7 +117,8 @@ FloatImage::Pointer denoise(FloatImage::Pointer image, const SegmentationOptions
 // The tissue voxels lying on bright tubes. Hessian of the image at the given scale,
 // eigenvalues ordered by magnitude |l1| <= |l2| <= |l3|: a bright tube curves down across both
 // its cross-section axes (l2, l3 < 0 and alike), a bright sheet across its thickness only
-// (l2 ~ 0). Voxels with l2/l3 >= tube_ratio seed the tubes, which then grow by up to
+// (l2 ~ 0). Voxels with l2/l3 >= tube_ratio lying within tube_ridge_offset of the ridge
+// along the second axis (from gradient / l2) seed the tubes, which then grow by up to
 // tube_growth_voxels into tissue that is not clearly inside a sheet: l2/l3 >= sheet_ratio, or
 // the image does not curve down along every axis (the largest eigenvalue by value >= 0, as on
 // a surface or next to noise in a sheet's flat directions; the notch closing below returns
@@ -136,6 +137,9 @@ MaskImage::Pointer tube_voxels(FloatImage::Pointer image, MaskImage::Pointer tis
   auto gradient = itk::GradientRecursiveGaussianImageFilter<FloatImage, itk::Image<Gradient, 3>>::New();
   gradient->SetInput(image);
   gradient->SetSigma(o.tube_scale);
+  // In index axes, as the Hessian's eigenvectors are (the filter rotates into physical space
+  // by default, which would mix frames on an oblique image).
+  gradient->SetUseImageDirection(false);
   gradient->Update();
   const Gradient* grad = gradient->GetOutput()->GetBufferPointer();
   const std::size_t n = tissue->GetLargestPossibleRegion().GetNumberOfPixels();
@@ -216,6 +220,7 @@ void SegmentationOptions::validate(const std::string& where) const {
     throw_input_error(where, "chordae_method", "opening|hessian", "\"" + chordae_method + "\"");
   if (!(tube_scale > 0)) throw_input_error(where, "tube_scale", "a length > 0 mm", std::to_string(tube_scale));
   if (!(tube_ratio > 0 && tube_ratio <= 1)) throw_input_error(where, "tube_ratio", "a ratio in (0, 1]", std::to_string(tube_ratio));
+  if (!(tube_ridge_offset >= 0)) throw_input_error(where, "tube_ridge_offset", "a length >= 0 mm", std::to_string(tube_ridge_offset));
   if (!(sheet_ratio >= 0 && sheet_ratio <= tube_ratio))
     throw_input_error(where, "sheet_ratio", "a ratio in [0, tube_ratio]", std::to_string(sheet_ratio));
   if (tube_growth_voxels < 0 || tube_growth_voxels > 10)
@@ -353,7 +358,8 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
     const std::uint32_t piece_count = n ? *std::max_element(piece, piece + n) : 0;
     std::vector<std::size_t> piece_size(piece_count + 1, 0);
     for (std::size_t v = 0; v < n; ++v) ++piece_size[piece[v]];
-    // A chord piece is at least 16 opening radii long: π r² · 16 r worth of voxels.
+    // A chord piece is at least 16 chord radii long: π r² · 16 r worth of voxels (r: the
+    // opening radius, or the Hessian's scale).
     const double radius = chord_radius;
     const auto chord_min = static_cast<std::size_t>(std::ceil(16 * 3.14159 * radius * radius * radius / voxel_mm3));
     std::vector<char> is_chord(piece_count + 1, 0);
@@ -376,7 +382,7 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
     const MaskImage::Pointer closed = morphology<itk::BinaryMorphologicalClosingImageFilter>(leaflet, ball);
     const std::uint8_t* c = closed->GetBufferPointer();
     for (std::size_t v = 0; v < n; ++v)
-      if (c[v] && out.labels[v] != label_background) out.labels[v] = label_leaflet;
+      if (c[v] && out.labels[v] == label_chordae) out.labels[v] = label_leaflet;  // notches only, not other tissue
   }
   for (std::uint8_t l : out.labels) {
     if (l == label_leaflet) ++s.voxels_leaflet;

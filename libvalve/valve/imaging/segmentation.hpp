@@ -7,7 +7,8 @@
 //     is label_chordae. Works where leaflets are thicker than chords (the phantoms);
 //   - chordae_method "hessian": tissue voxels whose smoothed image is tube-shaped are removed
 //     instead (Hessian eigenvalues |l1| <= |l2| <= |l3| at scale tube_scale: a bright tube has
-//     l2 and l3 both negative and alike, a bright sheet only l3; tube when l2/l3 >= tube_ratio,
+//     l2 and l3 both negative and alike, a bright sheet only l3; tube seeds where l2/l3 >=
+//     tube_ratio within tube_ridge_offset of the ridge (a sheet's rim rises into the sheet),
 //     grown into the tube's surface voxels that are not clearly inside a sheet: l2/l3 >=
 //     sheet_ratio, or some eigenvalue >= 0);
 //     the leaflet label is then closed within the tissue by notch_closing_radius, because
@@ -57,7 +58,7 @@ struct SegmentationSummary {
   std::size_t voxels_tissue = 0, voxels_leaflet = 0, voxels_chordae = 0, voxels_other = 0;
   int components = 0;         // after the opening, above the minimum size
   int leaflet_components = 0;
-  int chordae_pieces = 0;
+  int chordae_pieces = 0;     // before the Hessian method's notch closing
   bool chordae_separated = false;
   ImageGeometry cropped;
 };
