@@ -111,3 +111,20 @@ TEST_CASE("chords of a type keep the trunks that carry them", "[chordae]") {
   CHECK(chords_of_types(net, {"secondary"}).segments.size() == net.segments.size() - 1);
   CHECK(chords_of_types(net, {"strut"}).segments.empty());
 }
+
+TEST_CASE("chords of a type keep their points in the file's order", "[chordae]") {
+  // Tip 3 is listed after tip 0 but its chord comes first: the kept tips stay 0 then 3, so a
+  // list of closed-state tip positions in file order still matches them.
+  const ChordaeNetwork net = read_chordae_json(nlohmann::json::parse(R"({
+    "points": [{"kind": "papillary_tip", "position": [0, 0, -20], "name": "first"},
+               {"kind": "insertion", "position": [1, 0, 0], "mesh_node": 4},
+               {"kind": "insertion", "position": [-1, 0, 0], "mesh_node": 7},
+               {"kind": "papillary_tip", "position": [0, 5, -20], "name": "second"}],
+    "segments": [{"from": 3, "to": 2, "type": "primary"},
+                 {"from": 0, "to": 1, "type": "primary"}]})"), "c.json");
+  const ChordaeNetwork kept = chords_of_types(net, {"primary"});
+  REQUIRE(kept.points.size() == 4);
+  CHECK(kept.points[0].name == "first");
+  CHECK(kept.points[3].name == "second");
+  CHECK(kept.segments[0].from == 3);
+}

@@ -100,14 +100,18 @@ ChordaeNetwork chords_of_types(const ChordaeNetwork& in, const std::vector<std::
   }
   ChordaeNetwork out;
   out.diameter = in.diameter;
+  // Points keep their order in the file, so that per-tip lists (the scene's papillary_tips)
+  // still match the tips that remain.
   std::vector<int> index(n, -1);
+  for (std::size_t s = 0; s < in.segments.size(); ++s)
+    if (keep[s]) index[in.segments[s].from] = index[in.segments[s].to] = 0;
+  for (int p = 0; p < n; ++p)
+    if (index[p] == 0) index[p] = static_cast<int>(out.points.size()), out.points.push_back(in.points[p]);
   for (std::size_t s = 0; s < in.segments.size(); ++s) {
     if (!keep[s]) continue;
     ChordSegment t = in.segments[s];
-    for (int* p : {&t.from, &t.to}) {
-      if (index[*p] < 0) index[*p] = static_cast<int>(out.points.size()), out.points.push_back(in.points[*p]);
-      *p = index[*p];
-    }
+    t.from = index[t.from];
+    t.to = index[t.to];
     out.segments.push_back(t);
   }
   return out;

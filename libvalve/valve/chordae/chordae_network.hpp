@@ -60,7 +60,8 @@ nlohmann::json to_json(const ChordaeNetwork& network);
 /// types, plus, for each, the shortest path (in rest length) from its end nearer a papillary
 /// tip to a tip through segments of any type. Typing is per segment and a trunk may carry
 /// another type's name (the Texas TriValve deck types every trunk secondary), yet a primary
-/// chord without its trunk hangs loose. Kept segments keep their types; points are renumbered.
+/// chord without its trunk hangs loose. Kept segments keep their types; kept points keep their
+/// order.
 ChordaeNetwork chords_of_types(const ChordaeNetwork& network, const std::vector<std::string>& types);
 
 /// Reads chordae.json (the form above), checking it as a network: every segment joins two
