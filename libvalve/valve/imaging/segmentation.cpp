@@ -34,6 +34,15 @@ using MaskImage = itk::Image<std::uint8_t, 3>;
 using LabelImage = itk::Image<std::uint32_t, 3>;
 using Ball = itk::BinaryBallStructuringElement<std::uint8_t, 3>;
 
+// A mask on grid g, all background.
+MaskImage::Pointer empty_mask(const ImageGeometry& g) {
+  auto mask = MaskImage::New();
+  set_itk_geometry(*mask, g);
+  mask->Allocate();
+  mask->FillBuffer(0);
+  return mask;
+}
+
 // A ball of physical radius r as voxel radii per axis; false if it is under one voxel on an axis.
 bool ball_of(double radius_mm, const ImageGeometry& g, Ball* ball) {
   Ball::SizeType r;
@@ -125,7 +134,8 @@ FloatImage::Pointer denoise(FloatImage::Pointer image, const SegmentationOptions
 // sheet voxels taken that way). Near a tube's surface the ratio falls: on the Texas TriValve's
 // open frame the seeds hold about half the chord voxels; with the growth the stage labels 95 %
 // of them chordae and keeps 99 % of the leaflet voxels (counted against the deck's geometry).
-MaskImage::Pointer tube_voxels(FloatImage::Pointer image, MaskImage::Pointer tissue, const SegmentationOptions& o) {
+MaskImage::Pointer tube_voxels(FloatImage::Pointer image, MaskImage::Pointer tissue, const ImageGeometry& g,
+                               const SegmentationOptions& o) {
   using Tensor = itk::SymmetricSecondRankTensor<float, 3>;
   using TensorImage = itk::Image<Tensor, 3>;
   auto hessian = itk::HessianRecursiveGaussianImageFilter<FloatImage, TensorImage>::New();
@@ -142,16 +152,12 @@ MaskImage::Pointer tube_voxels(FloatImage::Pointer image, MaskImage::Pointer tis
   gradient->SetUseImageDirection(false);
   gradient->Update();
   const Gradient* grad = gradient->GetOutput()->GetBufferPointer();
-  const std::size_t n = tissue->GetLargestPossibleRegion().GetNumberOfPixels();
-  auto tubes = MaskImage::New();
-  tubes->CopyInformation(tissue);
-  tubes->SetRegions(tissue->GetLargestPossibleRegion());
-  tubes->Allocate();
+  const std::size_t n = g.voxel_count();
+  const MaskImage::Pointer tubes = empty_mask(g);
   const std::uint8_t* t = tissue->GetBufferPointer();
   std::uint8_t* tube = tubes->GetBufferPointer();
   std::vector<std::uint8_t> may_grow(n, 0);
   for (std::size_t v = 0; v < n; ++v) {
-    tube[v] = 0;
     if (!t[v]) continue;
     Tensor::EigenValuesArrayType l;
     Tensor::EigenVectorsMatrixType e;
@@ -294,11 +300,8 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
   if (o.chordae_method == "hessian") {
     s.chordae_separated = true;
     chord_radius = o.tube_scale;
-    const MaskImage::Pointer tubes = tube_voxels(image, tissue, o);
-    core = MaskImage::New();
-    core->CopyInformation(tissue);
-    core->SetRegions(tissue->GetLargestPossibleRegion());
-    core->Allocate();
+    const MaskImage::Pointer tubes = tube_voxels(image, tissue, g, o);
+    core = empty_mask(g);
     const std::uint8_t *t = tissue->GetBufferPointer(), *tube = tubes->GetBufferPointer();
     std::uint8_t* c = core->GetBufferPointer();
     for (std::size_t v = 0; v < n; ++v) c[v] = t[v] && !tube[v];
@@ -346,9 +349,7 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
 
   if (s.chordae_separated) {
     // What the opening removed: large pieces are chordae, crumbs return to the leaflet.
-    auto residual = MaskImage::New();
-    set_itk_geometry(*residual, g);
-    residual->Allocate();
+    const MaskImage::Pointer residual = empty_mask(g);
     std::uint8_t* r = residual->GetBufferPointer();
     const std::uint8_t* t = tissue->GetBufferPointer();
     const std::uint8_t* c = core->GetBufferPointer();
@@ -374,9 +375,7 @@ LabelMap segment_valve(const Volume& volume, const SegmentationOptions& o, Segme
   if (o.chordae_method == "hessian" && o.notch_closing_radius > 0 && ball_of(o.notch_closing_radius, g, &ball)) {
     // Without this the remeshed TTV membrane keeps the notches as a ragged free edge
     // (minimum triangle quality 0.12 instead of 0.68).
-    auto leaflet = MaskImage::New();
-    set_itk_geometry(*leaflet, g);
-    leaflet->Allocate();
+    const MaskImage::Pointer leaflet = empty_mask(g);
     std::uint8_t* l = leaflet->GetBufferPointer();
     for (std::size_t v = 0; v < n; ++v) l[v] = out.labels[v] == label_leaflet;
     const MaskImage::Pointer closed = morphology<itk::BinaryMorphologicalClosingImageFilter>(leaflet, ball);

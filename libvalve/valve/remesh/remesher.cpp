@@ -132,6 +132,14 @@ double face_quality(const Mesh& m, Mesh::Face_index f) {
   return triangle_quality(p[0], p[1], p[2]);
 }
 
+// The worst quality of the triangles around vertex v.
+double worst_quality_around(const Mesh& m, Mesh::Vertex_index v) {
+  double q = 1;
+  for (auto f : CGAL::faces_around_target(m.halfedge(v), m))
+    if (f != Mesh::null_face()) q = std::min(q, face_quality(m, f));
+  return q;
+}
+
 using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_face_graph_triangle_primitive<Mesh>>>;
 
 using Segments = std::vector<K::Segment_3>;
@@ -156,20 +164,14 @@ Segments border_segments(const Mesh& m) {
 // triangles further (without it the closed TTV frame ended with a 0.35-quality triangle).
 constexpr double kSnapQualityHeadroom = 0.1;
 int snap_border_vertices(Mesh& m, const SegmentTree& border, double min_quality) {
-  auto worst = [&](Mesh::Vertex_index v) {
-    double q = 1;
-    for (auto f : CGAL::faces_around_target(m.halfedge(v), m))
-      if (f != Mesh::null_face()) q = std::min(q, face_quality(m, f));
-    return q;
-  };
   int moved = 0;
   for (auto v : m.vertices()) {
     if (!m.is_border(v)) continue;
     const Point old = m.point(v), target = border.closest_point(old);
-    const double floor = std::min(min_quality + kSnapQualityHeadroom, worst(v));
+    const double floor = std::min(min_quality + kSnapQualityHeadroom, worst_quality_around(m, v));
     for (double t : {1.0, 0.75, 0.5, 0.25}) {
       m.point(v) = old + t * (target - old);
-      if (worst(v) >= floor) break;
+      if (worst_quality_around(m, v) >= floor) break;
       m.point(v) = old;
     }
     moved += m.point(v) != old;
@@ -197,15 +199,9 @@ int relax_sliver_vertices(Mesh& m, const Tree& surface, double min_quality) {
         }
         if (n == 0) continue;
         const Point old = m.point(v);
-        auto worst = [&] {
-          double q = 1;
-          for (auto g : CGAL::faces_around_target(m.halfedge(v), m))
-            if (g != Mesh::null_face()) q = std::min(q, face_quality(m, g));
-          return q;
-        };
-        const double before = worst();
+        const double before = worst_quality_around(m, v);
         m.point(v) = surface.closest_point(Point(x / n, y / n, z / n));
-        if (worst() > before) ++changed;
+        if (worst_quality_around(m, v) > before) ++changed;
         else m.point(v) = old;
       }
     }
