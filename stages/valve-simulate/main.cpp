@@ -191,7 +191,9 @@ int main(int argc, char** argv) {
     // Coaptation (seed 4.2.5) wherever leaflets can meet: a mesh of several leaflets.
     std::optional<CoaptationResult> coaptation;
     if (std::set<int>(mesh.leaflet.begin(), mesh.leaflet.end()).size() > 1) {
-      coaptation = analyze_coaptation(mesh, res.x);
+      CoaptationOptions coaptation_options;
+      if (scene.aortic_root) coaptation_options.axis = ValveAxis{scene.aortic_root->axis_point, scene.aortic_root->axis_direction};
+      coaptation = analyze_coaptation(mesh, res.x, coaptation_options);
       Eigen::MatrixXd gap(mesh.num_nodes(), 1), flag(mesh.num_nodes(), 1);
       for (int i = 0; i < mesh.num_nodes(); ++i) gap(i, 0) = coaptation->gap_mm[i], flag(i, 0) = coaptation->coapting[i];
       arrays.push_back({kCoaptationGapArray, gap, false});
@@ -200,9 +202,10 @@ int main(int argc, char** argv) {
       for (const auto& l : coaptation->leaflets)
         per.push_back({{"leaflet", l.leaflet}, {"area_mm2", l.area_mm2}, {"midline_height_mm", l.midline_height_mm},
                        {"midline_band_top_mm", l.midline_band_top_mm}, {"min_height_mm", l.min_height_mm}, {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
-                       {"closed", l.closed}});
+                       {"free_edge_axis_distance_mm", l.free_edge_axis_distance_mm}, {"closed", l.closed}});
       summary.metrics()["coaptation"] = {{"closed", coaptation->closed}, {"central_gap", coaptation->central_gap},
                                          {"min_height_mm", coaptation->min_height_mm},
+                                         {"max_free_edge_axis_distance_mm", coaptation->max_free_edge_axis_distance_mm},
                                          {"threshold_mm", CoaptationOptions{}.threshold_mm},
                                          {"free_edge_offset_mm", CoaptationOptions{}.free_edge_offset_mm}, {"leaflets", per}};
     }

@@ -302,6 +302,35 @@ TEST_CASE("coaptation: a node shared by two leaflets has gap 0 and no height", "
   CHECK_FALSE(r.closed);
 }
 
+TEST_CASE("coaptation: free-edge distance to a given axis", "[analysis][coaptation]") {
+  // Free edges: lower sheet y = 10, z = kLip, x = 0, 0.5, ..., 10; upper sheet (0.3 mm above)
+  // y = 10, z = 0.3 - kLip, x = 0.25, 0.75, ..., 9.75.
+  const TriMesh m = overlap_pair(0.3);
+  const VecX x = flatten(m.points);
+  CHECK(analyze_coaptation(m, x).max_free_edge_axis_distance_mm == -1);  // no axis, no measure
+  CHECK(analyze_coaptation(m, x).leaflets[0].free_edge_axis_distance_mm == -1);
+
+  // Vertical axis through (5, 13): the lower edge's node at x = 5 lies 3 mm from it, the
+  // upper edge's nearest nodes (x = 4.75, 5.25) sqrt(0.25² + 3²) mm. A non-unit direction.
+  CoaptationOptions vertical;
+  vertical.axis = ValveAxis{Vec3(5, 13, 7), Vec3(0, 0, 2)};
+  const CoaptationResult r = analyze_coaptation(m, x, vertical);
+  CHECK(r.leaflets[0].free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));
+  CHECK(r.leaflets[1].free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
+  CHECK(r.max_free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
+  CHECK(r.report().find("mm from the axis") != std::string::npos);
+
+  // An axis along x at y = 12, z = kLip: the distance is measured across the axis only.
+  CoaptationOptions along_x;
+  along_x.axis = ValveAxis{Vec3(-40, 12, kLip), Vec3(1, 0, 0)};
+  const CoaptationResult q = analyze_coaptation(m, x, along_x);
+  CHECK(q.leaflets[0].free_edge_axis_distance_mm == Approx(2.0).margin(1e-12));
+  CHECK(q.leaflets[1].free_edge_axis_distance_mm == Approx(std::hypot(2.0, 0.3 - 2 * kLip)).margin(1e-12));
+  // The heights do not depend on the axis.
+  const CoaptationResult plain = analyze_coaptation(m, x);
+  for (std::size_t l = 0; l < 2; ++l) CHECK(q.leaflets[l].min_height_mm == plain.leaflets[l].min_height_mm);
+}
+
 TEST_CASE("coaptation: invalid options and inputs throw InputError", "[analysis][coaptation]") {
   const double nan = std::nan("");
   for (double t : {0.0, -0.5, nan, HUGE_VAL}) {
@@ -317,6 +346,12 @@ TEST_CASE("coaptation: invalid options and inputs throw InputError", "[analysis]
   for (double offset : {-0.1, nan, HUGE_VAL}) {
     CoaptationOptions o;
     o.free_edge_offset_mm = offset;
+    CHECK_THROWS_AS(o.validate(), InputError);
+  }
+  for (const ValveAxis& axis : {ValveAxis{Vec3(0, 0, 0), Vec3(0, 0, 0)}, ValveAxis{Vec3(nan, 0, 0), Vec3(0, 0, 1)},
+                                ValveAxis{Vec3(0, 0, 0), Vec3(0, HUGE_VAL, 1)}}) {
+    CoaptationOptions o;
+    o.axis = axis;
     CHECK_THROWS_AS(o.validate(), InputError);
   }
   CoaptationOptions ok;

@@ -116,15 +116,19 @@ void CoaptationOptions::validate() const {
     throw_input_error("coaptation", "commissure_margin", "a fraction in [0, 0.5)", std::to_string(commissure_margin));
   if (!(free_edge_offset_mm >= 0) || !std::isfinite(free_edge_offset_mm))
     throw_input_error("coaptation", "free_edge_offset_mm", "a finite distance >= 0 mm", std::to_string(free_edge_offset_mm));
+  if (axis && (!axis->point.allFinite() || !axis->direction.allFinite() || !(axis->direction.norm() > 0)))
+    throw_input_error("coaptation", "axis", "a finite point and a non-zero finite direction", "a degenerate axis");
 }
 
 std::string CoaptationResult::report() const {
   std::ostringstream s;
   s << std::fixed << std::setprecision(2) << (closed ? "closed" : "open")
     << (central_gap ? ", central gap" : ", no central gap");
-  for (const auto& l : leaflets)
+  for (const auto& l : leaflets) {
     s << "; leaflet " << l.leaflet << ": area " << l.area_mm2 << " mm2, midline height " << l.midline_height_mm
       << " mm, min height " << l.min_height_mm << " mm";
+    if (l.free_edge_axis_distance_mm >= 0) s << ", free edge " << l.free_edge_axis_distance_mm << " mm from the axis";
+  }
   return s.str();
 }
 
@@ -266,6 +270,15 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
           break;
         }
       lc.min_height_mm = std::isfinite(min_height) ? min_height : lc.midline_height_mm;
+      if (opt.axis) {
+        const Vec3 u = opt.axis->direction.normalized();
+        double nearest = kInf;
+        for (int v : lc.free_edge) {
+          const Vec3 d = node3(x, v) - opt.axis->point;
+          nearest = std::min(nearest, (d - u * u.dot(d)).norm());
+        }
+        lc.free_edge_axis_distance_mm = nearest;
+      }
     }
     lc.closed = lc.min_height_mm > 0;
     if (lc.middle_node >= 0 && !r.coapting[lc.middle_node]) r.central_gap = true;
@@ -273,8 +286,10 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
   }
   r.closed = !r.leaflets.empty() &&
              std::all_of(r.leaflets.begin(), r.leaflets.end(), [](const LeafletCoaptation& l) { return l.closed; });
-  for (std::size_t k = 0; k < r.leaflets.size(); ++k)
+  for (std::size_t k = 0; k < r.leaflets.size(); ++k) {
     r.min_height_mm = k == 0 ? r.leaflets[k].min_height_mm : std::min(r.min_height_mm, r.leaflets[k].min_height_mm);
+    r.max_free_edge_axis_distance_mm = std::max(r.max_free_edge_axis_distance_mm, r.leaflets[k].free_edge_axis_distance_mm);
+  }
   return r;
 }
 

@@ -38,17 +38,32 @@
 // follows the mesh, so it overestimates a straight line by at most the zig-zag of the
 // triangulation (exact along grid lines of a structured mesh).
 //
+// Reach of the free edges (given the valve axis). In a sealed three-leaflet valve the free
+// edges meet on the axis; a free edge that stops short of it leaves a hole at the centre,
+// whatever the bands beside it do. free_edge_axis_distance_mm is the smallest distance from
+// a leaflet's deformed free-edge nodes to the axis (a node sampling, so within half a
+// free-edge segment of the polyline's own closest approach). Why a separate measure: the
+// heights say where a band is broken, not how far the leaflet is from closing the hole, which
+// is what changes between repairs and between solver settings.
+//
 // Minimum height: the minimum of h over the free-edge nodes whose rest arc length from
 // either end of the free edge is at least commissure_margin × the free edge's rest length:
 // at the commissures the strip shrinks to nothing by anatomy, not because of a bad
 // closure, so the ends are excluded. A leaflet is closed when that minimum is > 0, i.e.
 // its coaptation strip is continuous along the free edge between the margins.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "valve/mesh/tri_mesh.hpp"
 
 namespace valve {
+
+/// A line through `point` along `direction` (any non-zero length).
+struct ValveAxis {
+  Vec3 point = Vec3::Zero();
+  Vec3 direction = Vec3::UnitZ();
+};
 
 struct CoaptationOptions {
   double threshold_mm = 0.5;  // seed 4.2.5: a node coapts when its gap is at most this
@@ -58,7 +73,10 @@ struct CoaptationOptions {
   /// count as coaptation from the free edge: the seed's normal valve coapts to about 3 mm
   /// below the free edge (Fig. 4.4C), so a band that begins deeper is not that coaptation.
   double free_edge_offset_mm = 3.0;
-  void validate() const;  // throws InputError: threshold not > 0, margin outside [0, 0.5)
+  /// The valve's axis (aortic valve: the root's); without it the free-edge reach is not computed.
+  std::optional<ValveAxis> axis;
+  void validate() const;  // throws InputError: threshold not > 0, margin outside [0, 0.5),
+                          // an axis that is not finite or has no direction
 };
 
 /// Value of gap_mm for a node whose rays hit no other leaflet (and for nodes without
@@ -85,6 +103,9 @@ struct LeafletCoaptation {
   /// Rest length of the free-edge segments whose two end nodes coapt, over the rest length
   /// of the free edge (0 without free edge).
   double coapting_fraction_of_free_edge = 0;
+  /// Smallest distance of the deformed free-edge nodes to the valve axis; -1 without an axis
+  /// or a free edge.
+  double free_edge_axis_distance_mm = -1;
   bool closed = false;  // min_height_mm > 0
 };
 
@@ -95,6 +116,9 @@ struct CoaptationResult {
   bool closed = false;       // every leaflet closed (false for a mesh with one leaflet)
   bool central_gap = false;  // some leaflet's free-edge middle node does not coapt
   double min_height_mm = 0;  // smallest min_height_mm of the leaflets (0 without leaflets)
+  /// Largest free_edge_axis_distance_mm of the leaflets: how far from the axis the farthest
+  /// free edge stops (-1 without an axis).
+  double max_free_edge_axis_distance_mm = -1;
   /// One line: closed / central gap and per leaflet area, midline and minimum height.
   std::string report() const;
 };
