@@ -319,6 +319,9 @@ TEST_CASE("coaptation: free-edge distance to a given axis", "[analysis][coaptati
   CHECK(r.leaflets[1].free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
   CHECK(r.max_free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
   CHECK(r.report().find("mm from the axis") != std::string::npos);
+  CoaptationOptions huge = vertical;
+  huge.axis->direction = Vec3(0, 0, 1e200);  // would overflow a plain norm
+  CHECK(analyze_coaptation(m, x, huge).leaflets[0].free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));
 
   // An axis along x at y = 12, z = kLip: the distance is measured across the axis only.
   CoaptationOptions along_x;
@@ -353,6 +356,11 @@ TEST_CASE("coaptation: invalid options and inputs throw InputError", "[analysis]
     CoaptationOptions o;
     o.axis = axis;
     CHECK_THROWS_AS(o.validate(), InputError);
+  }
+  for (const Vec3& direction : {Vec3(1e-170, 0, 0), Vec3(1e200, 1e200, 0)}) {  // any finite size is a direction
+    CoaptationOptions o;
+    o.axis = ValveAxis{Vec3(0, 0, 0), direction};
+    CHECK_NOTHROW(o.validate());
   }
   CoaptationOptions ok;
   ok.commissure_margin = 0;

@@ -116,7 +116,9 @@ void CoaptationOptions::validate() const {
     throw_input_error("coaptation", "commissure_margin", "a fraction in [0, 0.5)", std::to_string(commissure_margin));
   if (!(free_edge_offset_mm >= 0) || !std::isfinite(free_edge_offset_mm))
     throw_input_error("coaptation", "free_edge_offset_mm", "a finite distance >= 0 mm", std::to_string(free_edge_offset_mm));
-  if (axis && (!axis->point.allFinite() || !axis->direction.allFinite() || !(axis->direction.norm() > 0)))
+  // stableNorm: a finite direction of any size, 1e-170 or 1e200, is a direction.
+  if (axis && (!axis->point.allFinite() || !axis->direction.allFinite() ||
+               !(axis->direction.stableNorm() > 0) || !std::isfinite(axis->direction.stableNorm())))
     throw_input_error("coaptation", "axis", "a finite point and a non-zero finite direction", "a degenerate axis");
 }
 
@@ -271,7 +273,7 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
         }
       lc.min_height_mm = std::isfinite(min_height) ? min_height : lc.midline_height_mm;
       if (opt.axis) {
-        const Vec3 u = opt.axis->direction.normalized();
+        const Vec3 u = opt.axis->direction / opt.axis->direction.stableNorm();
         double nearest = kInf;
         for (int v : lc.free_edge) {
           const Vec3 d = node3(x, v) - opt.axis->point;

@@ -116,10 +116,11 @@ struct CoaptationResult {
   bool closed = false;       // every leaflet closed (false for a mesh with one leaflet)
   bool central_gap = false;  // some leaflet's free-edge middle node does not coapt
   double min_height_mm = 0;  // smallest min_height_mm of the leaflets (0 without leaflets)
-  /// Largest free_edge_axis_distance_mm of the leaflets: how far from the axis the farthest
-  /// free edge stops (-1 without an axis).
+  /// Largest free_edge_axis_distance_mm of the leaflets that have a free edge: how far from
+  /// the axis the farthest free edge stops (-1 without an axis or without free edges).
   double max_free_edge_axis_distance_mm = -1;
-  /// One line: closed / central gap and per leaflet area, midline and minimum height.
+  /// One line: closed / central gap and per leaflet area, midline and minimum height, and the
+  /// free edge's distance from the axis when there is one.
   std::string report() const;
 };
 
