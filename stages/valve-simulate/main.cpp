@@ -14,6 +14,7 @@
 #include <set>
 
 #include "valve/analysis/coaptation.hpp"
+#include "valve/analysis/surface_intersections.hpp"
 #include "valve/io/chordae_io.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/mechanics/chordae_rods.hpp"
@@ -152,6 +153,17 @@ int main(int argc, char** argv) {
                                         {"deepest_penetration_mm", st.deepest_penetration},
                                         {"closest_distance_mm", st.closest_distance},
                                         {"broad_phase_seconds", st.broad_phase_seconds}};
+        // Checked apart from the contact term, which sees only unsigned distances.
+        if (res.x.allFinite()) {
+          std::vector<char> anchored(mesh.num_nodes(), 0);
+          for (int i = 0; i < mesh.num_nodes(); ++i) anchored[i] = mesh.roles[i] != NodeRole::free;
+          const SurfaceIntersections crossing = find_surface_intersections(mesh.triangles, res.x, mesh.leaflet, anchored);
+          summary.metrics()["contact"]["intersecting_triangle_pairs"] = crossing.pairs;
+          summary.metrics()["contact"]["intersecting_pairs_between_leaflets"] = crossing.between_leaflets;
+          summary.metrics()["contact"]["intersecting_pairs_one_edge_apart"] = crossing.one_edge_apart;
+          summary.metrics()["contact"]["intersecting_pairs_both_anchored"] = crossing.both_anchored;
+          summary.metrics()["contact"]["first_intersecting_pairs"] = crossing.first_pairs;
+        }
       }
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
       summary.set_status("failed", res.summary.reason);

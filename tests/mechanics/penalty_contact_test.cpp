@@ -29,6 +29,29 @@ double energy_of(const PenaltyContactTerm& c, const VecX& x) {
   return e;
 }
 
+// Contact forces at x of a term built with `without` and one built with `with` (options),
+// after each has seen x: the first must see nothing.
+VecX forces_seen_only_with(const TriMesh& m, const PenaltyContactOptions& without, const PenaltyContactOptions& with) {
+  const VecX x = flatten(m.points);
+  const std::vector<char> free(3 * m.num_nodes(), 0);
+  PenaltyContactTerm blind(m, without, free), seeing(m, with, free);
+  blind.update_couplings(x);
+  seeing.update_couplings(x);
+  CHECK(forces(blind, x).norm() == 0);
+  const VecX f = forces(seeing, x);
+  CHECK(seeing.statistics().active_pairs == 1);  // one pair, counted once
+  return f;
+}
+
+// Two edges crossing 0.1 mm apart along z at their midpoints: k (δ − d)² / δ = 0.09 N split
+// half and half over each edge's two nodes, pushing the edges apart along z; nothing else.
+void check_edges_pushed_apart(const VecX& f, std::initializer_list<int> upper, std::initializer_list<int> lower,
+                              std::initializer_list<int> untouched) {
+  for (int i : upper) CHECK(node3(f, i).z() == Approx(0.045).epsilon(1e-9));
+  for (int i : lower) CHECK(node3(f, i).z() == Approx(-0.045).epsilon(1e-9));
+  for (int i : untouched) CHECK(node3(f, i).norm() == 0);
+}
+
 }  // namespace
 
 TEST_CASE("closest point on a triangle and between segments match dense sampling", "[mechanics][penalty_contact]") {
@@ -148,23 +171,27 @@ TEST_CASE("penalty contact stops free edges crossing edge-on", "[mechanics][pena
   m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
   m.leaflet = {0, 1};
   m.fill_defaults();
-  const VecX x = flatten(m.points);
-  PenaltyContactOptions opt;
-  PenaltyContactTerm with_edges(m, opt, std::vector<char>(18, 0));
-  opt.edge_contact = false;
-  PenaltyContactTerm faces_only(m, opt, std::vector<char>(18, 0));
-  with_edges.update_couplings(x);
-  faces_only.update_couplings(x);
-  CHECK(forces(faces_only, x).norm() == 0);
-  const VecX f = forces(with_edges, x);
-  // The crossing points are the edges' midpoints, 0.1 mm apart along z: k (δ − d)² / δ =
-  // 0.09 N split half and half over each edge's two nodes, pushing the edges apart along z.
-  CHECK(node3(f, 3).z() == Approx(0.045).epsilon(1e-9));
-  CHECK(node3(f, 4).z() == Approx(0.045).epsilon(1e-9));
-  CHECK(node3(f, 0).z() == Approx(-0.045).epsilon(1e-9));
-  CHECK(node3(f, 1).z() == Approx(-0.045).epsilon(1e-9));
-  CHECK(node3(f, 2).norm() == 0);
-  CHECK(node3(f, 5).norm() == 0);
+  PenaltyContactOptions faces_only;
+  faces_only.edge_contact = false;
+  check_edges_pushed_apart(forces_seen_only_with(m, faces_only, PenaltyContactOptions{}), {3, 4}, {0, 1}, {2, 5});
+}
+
+TEST_CASE("penalty contact with interior edges stops ridges crossing", "[mechanics][penalty_contact]") {
+  // Two tents of two triangles each: A's ridge 0-1 along x at z = 0 with its slopes going
+  // down to z = -2, B's ridge 4-5 along y at z = 0.1 with its slopes going up to z = 2.1.
+  // The ridges (interior edges) cross 0.1 mm apart at the origin; every node lies at least
+  // 0.78 mm from the other tent's faces and every boundary edge at least 1 mm from the other
+  // tent: neither node-face nor free-edge pairs see it, only the interior edge pair.
+  TriMesh m;
+  m.points.resize(8, 3);
+  m.points << -1, 0, 0, 1, 0, 0, 0, -2, -2, 0, 2, -2,  //
+      0, -1, 0.1, 0, 1, 0.1, -2, 0, 2.1, 2, 0, 2.1;
+  m.triangles = {Tri(0, 1, 2), Tri(1, 0, 3), Tri(4, 5, 6), Tri(5, 4, 7)};
+  m.leaflet = {0, 0, 1, 1};
+  m.fill_defaults();
+  PenaltyContactOptions all_edges;
+  all_edges.interior_edges = true;
+  check_edges_pushed_apart(forces_seen_only_with(m, PenaltyContactOptions{}, all_edges), {4, 5}, {0, 1}, {2, 3, 6, 7});
 }
 
 TEST_CASE("penalty contact step ratio bounds each pair's closing along its normal", "[mechanics][penalty_contact]") {

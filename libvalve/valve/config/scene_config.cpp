@@ -141,6 +141,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       po.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("1000 N/m"), 1e-12, 1e12);
       po.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
       po.edge_contact = c.boolean("edges", true);
+      po.interior_edges = c.boolean("interior_edges", false);
+      if (po.interior_edges && !po.edge_contact) c.fail("interior_edges", "false when edges is false", "true");
       po.between_leaflets = between;
       po.self_contact = self;
       po.broad_phase = broad_phase();
