@@ -162,6 +162,7 @@ int main(int argc, char** argv) {
           summary.metrics()["contact"]["intersecting_pairs_between_leaflets"] = crossing.between_leaflets;
           summary.metrics()["contact"]["intersecting_pairs_one_edge_apart"] = crossing.one_edge_apart;
           summary.metrics()["contact"]["intersecting_pairs_both_anchored"] = crossing.both_anchored;
+          summary.metrics()["contact"]["intersection_pairs_skipped_degenerate"] = crossing.degenerate_skipped;
           summary.metrics()["contact"]["first_intersecting_pairs"] = crossing.first_pairs;
         }
       }

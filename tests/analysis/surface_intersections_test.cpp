@@ -117,6 +117,28 @@ TEST_CASE("surface intersections: a fold tighter than two triangles is one edge 
   CHECK_THROWS_AS(find_surface_intersections(tris, flat(pts), {}, anchored), InputError);
 }
 
+TEST_CASE("surface intersections: a flat (degenerate) triangle is tested as its longest edge", "[analysis][intersections]") {
+  std::vector<Tri> tris;
+  std::vector<Vec3> pts;
+  add_grid(tris, pts);
+  // Collinear nodes along z at x = 4.5, y = 4.5: a needle through the grid in cell (4, 4),
+  // inside its upper-left triangle (y - 4 > x - 4 at x = y: on the diagonal; moved to
+  // y = 4.6 to lie strictly inside).
+  add_blade(tris, pts, Vec3(4.5, 4.6, -1), Vec3(4.5, 4.6, 0.5), Vec3(4.5, 4.6, 1));
+  SurfaceIntersections r = find_surface_intersections(tris, flat(pts));
+  CHECK(r.pairs == 1);
+  CHECK(r.degenerate_skipped == 0);
+  // The same needle above the grid does not touch it.
+  for (int k = 0; k < 3; ++k) pts[pts.size() - 1 - k].z() += 2.5;
+  r = find_surface_intersections(tris, flat(pts));
+  CHECK(r.pairs == 0);
+  // Collapsed to a point on the grid: skipped, and counted as skipped.
+  for (int k = 0; k < 3; ++k) pts[pts.size() - 1 - k] = Vec3(4.5, 4.6, 0);
+  r = find_surface_intersections(tris, flat(pts));
+  CHECK(r.pairs == 0);
+  CHECK(r.degenerate_skipped >= 1);
+}
+
 TEST_CASE("surface intersections: bad positions throw InputError", "[analysis][intersections]") {
   std::vector<Tri> tris{{0, 1, 2}};
   CHECK_THROWS_AS(find_surface_intersections(tris, VecX::Zero(8)), InputError);

@@ -180,7 +180,7 @@ TEST_CASE("penalty contact with interior edges stops ridges crossing", "[mechani
   // Two tents of two triangles each: A's ridge 0-1 along x at z = 0 with its slopes going
   // down to z = -2, B's ridge 4-5 along y at z = 0.1 with its slopes going up to z = 2.1.
   // The ridges (interior edges) cross 0.1 mm apart at the origin; every node lies at least
-  // 0.78 mm from the other tent's faces and every boundary edge at least 1 mm from the other
+  // 0.78 mm from the other tent's faces and every boundary edge at least 0.9 mm from the other
   // tent: neither node-face nor free-edge pairs see it, only the interior edge pair.
   TriMesh m;
   m.points.resize(8, 3);

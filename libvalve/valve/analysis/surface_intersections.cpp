@@ -72,11 +72,31 @@ SurfaceIntersections find_surface_intersections(const std::vector<Tri>& triangle
     return false;
   };
   SurfaceIntersections out;
+  // The longest edge of a degenerate (flat) triangle: it covers the whole triangle.
+  auto longest_edge = [&](int t) {
+    const K::Triangle_3& g = geometry[t];
+    K::Segment_3 best(g[0], g[1]);
+    for (int k = 1; k < 3; ++k) {
+      const K::Segment_3 e(g[k], g[(k + 1) % 3]);
+      if (e.squared_length() > best.squared_length()) best = e;
+    }
+    return best;
+  };
+  auto intersect = [&](int s, int t) {
+    const bool ds = geometry[s].is_degenerate(), dt = geometry[t].is_degenerate();
+    if (!ds && !dt) return CGAL::do_intersect(geometry[s], geometry[t]);
+    const K::Segment_3 es = ds ? longest_edge(s) : K::Segment_3(), et = dt ? longest_edge(t) : K::Segment_3();
+    if ((ds && es.is_degenerate()) || (dt && et.is_degenerate())) {
+      ++out.degenerate_skipped;
+      return false;
+    }
+    if (ds && dt) return CGAL::do_intersect(es, et);
+    return ds ? CGAL::do_intersect(es, geometry[t]) : CGAL::do_intersect(et, geometry[s]);
+  };
   auto test = [&](const Box& a, const Box& b) {
     const int s = a.info(), t = b.info();
     if (share_node(triangles[s], triangles[t])) return;
-    if (geometry[s].is_degenerate() || geometry[t].is_degenerate()) return;  // no plane to cross
-    if (!CGAL::do_intersect(geometry[s], geometry[t])) return;
+    if (!intersect(s, t)) return;
     ++out.pairs;
     if (!leaflet.empty() && leaflet[s] != leaflet[t]) ++out.between_leaflets;
     if (one_edge_apart(triangles[s], triangles[t])) ++out.one_edge_apart;

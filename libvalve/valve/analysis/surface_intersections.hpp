@@ -13,10 +13,14 @@
 // intersecting pair; touching (distance exactly 0) counts as intersecting.
 //
 // Pairs one edge apart (a node of one triangle joined by a mesh edge to a node of the
-// other) are counted apart as well: they are folds tighter than two triangles, which the
-// contact terms leave alone by design (contact_base.hpp: a node never touches a triangle
-// that shares a vertex with its 1-ring), while pairs further apart are crossings contact
-// should have stopped.
+// other) are counted apart as well: folds tighter than two triangles, largely out of the
+// contact terms' reach (contact_base.hpp: a node never touches a triangle that shares a
+// vertex with its 1-ring, so the pairs through the joining node are excluded, though other
+// pairs of the same two triangles may still act). A heuristic split: pairs further apart
+// are crossings contact should have stopped.
+//
+// A degenerate triangle (collinear nodes) has no plane; it is tested as its longest edge,
+// a segment, and one collapsed to a point is skipped (counted in degenerate_skipped).
 #include <utility>
 #include <vector>
 
@@ -30,6 +34,7 @@ struct SurfaceIntersections {
   long one_edge_apart = 0;                       // of those, pairs one mesh edge apart (tight folds)
   long both_anchored = 0;                        // of those, pairs whose two triangles each have
                                                  // an anchored node (leaflets sewn side by side)
+  long degenerate_skipped = 0;                   // candidate pairs with a triangle collapsed to a point
   std::vector<std::pair<int, int>> first_pairs;  // up to 10 of them (triangle indices, ascending)
 };
 

@@ -18,6 +18,8 @@ void PenaltyContactOptions::validate() const {
     throw InputError("contact.detection: expected 0 (automatic) or more than the separation");
   if (!between_leaflets && !self_contact)
     throw InputError("contact: expected between_leaflets or self_contact (or both) to be true");
+  if (interior_edges && !edge_contact)
+    throw InputError("contact.interior_edges: expected false when edges is false, found true");
 }
 
 PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContactOptions& opt,

@@ -101,7 +101,7 @@ struct PenaltyContactOptions {
   bool edge_contact = true;     // boundary-edge vs edge pairs
   bool interior_edges = false;  // with edge_contact: every edge vs every edge (pairs (3))
   BroadPhaseMethod broad_phase = BroadPhaseMethod::spatial_hash;
-  void validate() const;  // throws InputError
+  void validate() const;  // throws InputError (also: interior_edges without edge_contact)
 };
 
 class PenaltyContactTerm final : public ContactForceTerm {
@@ -129,7 +129,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
     double distance;
   };
   /// A candidate pair's distance d and unit direction n from the second side (triangle, or
-  /// the other edge) to the first (node, or boundary edge); n = 0 when d vanishes.
+  /// the other edge) to the first (node, or query edge); n = 0 when d vanishes.
   struct PairGap {
     double distance;
     Vec3 normal;
@@ -152,7 +152,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
                                      // interior_edges; empty without edge contact
   std::vector<char> is_query_edge_;  // per edge
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted
-  std::vector<std::pair<int, int>> edge_pairs_;        // (boundary edge, edge) candidates
+  std::vector<std::pair<int, int>> edge_pairs_;        // (query edge, edge) candidates
   std::vector<std::pair<int, int>> coupled_;
   VecX built_at_;  // positions when the candidate list was built (empty: never)
   VecX contacts_x_;                 // where update_couplings last found the active contacts
