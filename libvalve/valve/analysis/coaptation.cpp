@@ -117,8 +117,8 @@ void CoaptationOptions::validate() const {
   if (!(free_edge_offset_mm >= 0) || !std::isfinite(free_edge_offset_mm))
     throw_input_error("coaptation", "free_edge_offset_mm", "a finite distance >= 0 mm", std::to_string(free_edge_offset_mm));
   // stableNorm: a finite direction of any size, 1e-170 or 1e200, is a direction.
-  if (axis && (!axis->point.allFinite() || !axis->direction.allFinite() ||
-               !(axis->direction.stableNorm() > 0) || !std::isfinite(axis->direction.stableNorm())))
+  const double length = axis ? axis->direction.stableNorm() : 1.0;
+  if (axis && (!axis->point.allFinite() || !(length > 0) || !std::isfinite(length)))
     throw_input_error("coaptation", "axis", "a finite point and a non-zero finite direction", "a degenerate axis");
 }
 

@@ -8,19 +8,13 @@
 #include <algorithm>
 
 #include "valve/core/error.hpp"
+#include "valve/mesh/topology.hpp"
 
 namespace valve {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
-
-bool share_node(const Tri& a, const Tri& b) {
-  for (int i : a)
-    for (int j : b)
-      if (i == j) return true;
-  return false;
-}
 
 }  // namespace
 
@@ -56,15 +50,11 @@ SurfaceIntersections find_surface_intersections(const std::vector<Tri>& triangle
   }
   // Node adjacency (sorted lists) for the one-edge-apart test.
   std::vector<std::vector<int>> neighbours(n);
-  for (const Tri& t : triangles)
-    for (int k = 0; k < 3; ++k) {
-      neighbours[t[k]].push_back(t[(k + 1) % 3]);
-      neighbours[t[k]].push_back(t[(k + 2) % 3]);
-    }
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
+  for (const auto& [a, b] : unique_edges(triangles)) {
+    neighbours[a].push_back(b);
+    neighbours[b].push_back(a);
   }
+  for (auto& list : neighbours) std::sort(list.begin(), list.end());
   auto one_edge_apart = [&](const Tri& a, const Tri& b) {
     for (int i : a)
       for (int j : b)
@@ -95,7 +85,7 @@ SurfaceIntersections find_surface_intersections(const std::vector<Tri>& triangle
   };
   auto test = [&](const Box& a, const Box& b) {
     const int s = a.info(), t = b.info();
-    if (share_node(triangles[s], triangles[t])) return;
+    if (share_vertex(triangles[s], triangles[t])) return;
     if (!intersect(s, t)) return;
     ++out.pairs;
     if (!leaflet.empty() && leaflet[s] != leaflet[t]) ++out.between_leaflets;

@@ -8,6 +8,7 @@
 
 #include "valve/core/error.hpp"
 #include "valve/mechanics/contact_base.hpp"
+#include "valve/mesh/topology.hpp"
 
 namespace valve {
 namespace {

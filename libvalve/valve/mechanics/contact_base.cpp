@@ -63,13 +63,6 @@ bool ContactTopology::excluded_edges(int a, int b, int c, int d) const {
   return true;
 }
 
-bool share_vertex(const Tri& a, const Tri& b) {
-  for (int u = 0; u < 3; ++u)
-    for (int v = 0; v < 3; ++v)
-      if (a[u] == b[v]) return true;
-  return false;
-}
-
 bool grow_couplings(std::vector<std::pair<int, int>>& pattern, std::vector<std::pair<int, int>> added) {
   std::sort(added.begin(), added.end());
   added.erase(std::unique(added.begin(), added.end()), added.end());

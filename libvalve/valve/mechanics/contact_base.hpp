@@ -25,9 +25,6 @@ struct ContactStatistics {
   double closest_distance = -1;    // mm, smallest distance of an active pair (-1: none)
 };
 
-/// Whether two triangles share a vertex.
-bool share_vertex(const Tri& a, const Tri& b);
-
 /// Adds the node pairs `added` (any order, duplicates allowed) to the sorted Jacobian
 /// pattern `pattern` and returns whether it grew. The pattern only grows: stale couplings
 /// cost a few zeros, and keeping them spares a symbolic re-analysis whenever a pair leaves

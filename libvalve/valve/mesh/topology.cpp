@@ -71,4 +71,11 @@ Topology build_topology(const std::vector<Tri>& triangles, int num_nodes) {
   return topo;
 }
 
+bool share_vertex(const Tri& a, const Tri& b) {
+  for (int u = 0; u < 3; ++u)
+    for (int v = 0; v < 3; ++v)
+      if (a[u] == b[v]) return true;
+  return false;
+}
+
 }  // namespace valve

@@ -21,6 +21,9 @@ struct Topology {
 /// Builds edges (sorted by (a, b)) and boundary loops.
 Topology build_topology(const std::vector<Tri>& triangles, int num_nodes);
 
+/// Whether two triangles share a node.
+bool share_vertex(const Tri& a, const Tri& b);
+
 /// Unique undirected node pairs (a < b) of all triangle edges.
 std::vector<std::pair<int, int>> unique_edges(const std::vector<Tri>& triangles);
 
