@@ -154,7 +154,7 @@ TEST_CASE("both broad phases find exactly the brute-force pairs", "[mechanics][c
   CHECK(some == broad_phase_pairs(x, tris, margin, BroadPhaseMethod::sweep_and_prune, query));
 }
 
-TEST_CASE("edge box sweep finds the brute-force box pairs and every segment pair within the margin",
+TEST_CASE("edge box grid finds the brute-force box pairs and every segment pair within the margin",
           "[mechanics][contact]") {
   std::mt19937 gen(5);
   std::uniform_real_distribution<double> u(-5, 5);
@@ -175,9 +175,11 @@ TEST_CASE("edge box sweep finds the brute-force box pairs and every segment pair
   std::vector<std::pair<int, int>> brute;
   int close_pairs = 0;
   const auto found = edge_box_pairs(x, edges, query, margin);
+  std::vector<char> is_query(edges.size(), 0);
+  for (int q : query) is_query[q] = 1;
   for (int q : query)
     for (int e = 0; e < static_cast<int>(edges.size()); ++e) {
-      if (e == q) continue;
+      if (e == q || (is_query[e] && e < q)) continue;  // two queries: once, as (lower, higher)
       const auto [qlo, qhi] = box(q);
       const auto [lo, hi] = box(e);
       if ((hi.array() >= qlo.array() - margin).all() && (lo.array() <= qhi.array() + margin).all())
@@ -193,6 +195,36 @@ TEST_CASE("edge box sweep finds the brute-force box pairs and every segment pair
   std::sort(brute.begin(), brute.end());
   REQUIRE(close_pairs > 50);
   CHECK(found == brute);
+}
+
+TEST_CASE("edge box grid: every edge a query in any order, and a scene collapsed to a point", "[mechanics][contact]") {
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> u(0, 20);
+  const int nodes = 200;
+  VecX x(3 * nodes);
+  for (int i = 0; i < x.size(); ++i) x[i] = u(gen);
+  std::vector<std::pair<int, int>> edges;
+  for (int e = 0; e < 300; ++e) edges.emplace_back(gen() % nodes, gen() % nodes);
+  std::vector<int> query(edges.size());
+  for (size_t e = 0; e < edges.size(); ++e) query[e] = static_cast<int>(edges.size() - 1 - e);  // descending
+  const double margin = 1.5;
+  std::vector<std::pair<int, int>> brute;
+  for (int q = 0; q < static_cast<int>(edges.size()); ++q)
+    for (int e = q + 1; e < static_cast<int>(edges.size()); ++e) {
+      const Vec3 a = node3(x, edges[q].first), b = node3(x, edges[q].second);
+      const Vec3 c = node3(x, edges[e].first), d = node3(x, edges[e].second);
+      const Vec3 qlo = a.cwiseMin(b).array() - margin, qhi = a.cwiseMax(b).array() + margin;
+      if ((c.cwiseMax(d).array() >= qlo.array()).all() && (c.cwiseMin(d).array() <= qhi.array()).all()) brute.emplace_back(q, e);
+    }
+  REQUIRE(brute.size() > 500);
+  CHECK(edge_box_pairs(x, edges, query, margin) == brute);  // sorted by query although asked in reverse
+
+  // Every node at one point: every box is that point, every edge meets every other, each
+  // pair once.
+  const VecX same = VecX::Constant(3 * 4, 2.5);
+  const std::vector<std::pair<int, int>> four{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+  const std::vector<std::pair<int, int>> expected{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
+  CHECK(edge_box_pairs(same, four, {3, 1, 0, 2}, 0.0) == expected);
 }
 
 namespace {

@@ -31,6 +31,7 @@ bool inside(const Box& b, const Vec3& p) {
   return (p.array() >= b.lo.array()).all() && (p.array() <= b.hi.array()).all();
 }
 
+
 std::vector<int> query_nodes(int n, const std::vector<char>& query) {
   std::vector<int> nodes;
   for (int i = 0; i < n; ++i)
@@ -60,42 +61,83 @@ std::vector<std::pair<int, int>> sweep_and_prune(const VecX& x, const std::vecto
   return pairs;
 }
 
-std::vector<std::pair<int, int>> spatial_hash(const VecX& x, const std::vector<Box>& boxes,
-                                              const std::vector<int>& nodes) {
+bool overlap(const Box& a, const Box& b) {
+  return (a.hi.array() >= b.lo.array()).all() && (a.lo.array() <= b.hi.array()).all();
+}
+
+/// (query_ids[k], target) for every target box that overlaps query box k and that
+/// skip(query_ids[k], target) does not refuse, sorted by query id, then target. A uniform grid over the targets, stored as one array of target
+/// lists per cell (CSR); a query visits the cells its box overlaps and meets a target once
+/// however many of those cells list it (a stamp per target). The cell is the larger of the
+/// mean target and the mean query box size, so a point visits one cell and an inflated box
+/// a few; it grows while the grid would have more cells than 4 per target.
+template <class Skip>
+std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, const std::vector<Box>& queries,
+                                               const std::vector<int>& query_ids, const Skip& skip) {
   std::vector<std::pair<int, int>> pairs;
-  if (boxes.empty() || nodes.empty()) return pairs;
-  double mean_extent = 0;
-  Vec3 lo = boxes[0].lo, hi = boxes[0].hi;
-  for (const auto& b : boxes) {
-    mean_extent += (b.hi - b.lo).maxCoeff();
+  if (targets.empty() || queries.empty()) return pairs;
+  Vec3 lo = targets[0].lo, hi = targets[0].hi;
+  double target_extent = 0, query_extent = 0;
+  for (const auto& b : targets) {
+    target_extent += (b.hi - b.lo).maxCoeff();
     lo = lo.cwiseMin(b.lo);
     hi = hi.cwiseMax(b.hi);
   }
-  const double cell = std::max(mean_extent / boxes.size(), 1e-12);
-  // Cell keys packed from integer coordinates relative to the scene's lower corner.
-  const Eigen::Array3d count = ((hi - lo) / cell).array().floor() + 1;
-  auto key = [&](const Eigen::Array3i& c) {
-    return (static_cast<int64_t>(c.z()) * static_cast<int64_t>(count.y()) + c.y()) * static_cast<int64_t>(count.x()) + c.x();
+  for (const auto& b : queries) query_extent += (b.hi - b.lo).maxCoeff();
+  double cell = std::max({target_extent / targets.size(), query_extent / queries.size(), 1e-12});
+  Eigen::Array3i dims;
+  const double max_cells = 4.0 * targets.size() + 4096;
+  while (true) {
+    const Eigen::Array3d d = ((hi - lo) / cell).array().floor() + 1;
+    if (d.prod() <= max_cells) {
+      dims = d.cast<int>();
+      break;
+    }
+    cell *= 1.25;
+  }
+  auto cell_of = [&](const Vec3& p) {
+    return (((p - lo) / cell).array().floor().cast<int>().max(0).min(dims - 1)).eval();
   };
-  auto cell_of = [&](const Vec3& p) { return ((p - lo) / cell).array().floor().cast<int>().eval(); };
-  std::vector<std::pair<int64_t, int>> entries;  // (cell key, triangle)
-  for (size_t t = 0; t < boxes.size(); ++t) {
-    const Eigen::Array3i a = cell_of(boxes[t].lo), b = cell_of(boxes[t].hi);
-    for (int cz = a.z(); cz <= b.z(); ++cz)
-      for (int cy = a.y(); cy <= b.y(); ++cy)
-        for (int cx = a.x(); cx <= b.x(); ++cx) entries.emplace_back(key({cx, cy, cz}), static_cast<int>(t));
+  auto index = [&](int cx, int cy, int cz) { return (static_cast<long>(cz) * dims.y() + cy) * dims.x() + cx; };
+  std::vector<int> start(static_cast<size_t>(dims.prod()) + 1, 0), entries;
+  auto for_cells = [&](const Box& b, auto&& visit) {
+    const Eigen::Array3i a = cell_of(b.lo), c = cell_of(b.hi);
+    for (int cz = a.z(); cz <= c.z(); ++cz)
+      for (int cy = a.y(); cy <= c.y(); ++cy)
+        for (int cx = a.x(); cx <= c.x(); ++cx) visit(index(cx, cy, cz));
+  };
+  for (const auto& b : targets) for_cells(b, [&](long k) { ++start[k + 1]; });
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  entries.resize(start.back());
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (size_t t = 0; t < targets.size(); ++t) for_cells(targets[t], [&](long k) { entries[fill[k]++] = static_cast<int>(t); });
+
+  std::vector<int> seen(targets.size(), -1);
+  const Box scene{lo, hi};
+  for (size_t q = 0; q < queries.size(); ++q) {
+    if (!overlap(queries[q], scene)) continue;
+    const size_t first = pairs.size();
+    const int id = query_ids[q];
+    for_cells(queries[q], [&](long k) {
+      for (int j = start[k]; j < start[k + 1]; ++j) {
+        const int t = entries[j];
+        if (seen[t] == static_cast<int>(q)) continue;
+        seen[t] = static_cast<int>(q);
+        if (skip(id, t) || !overlap(targets[t], queries[q])) continue;
+        pairs.emplace_back(id, t);
+      }
+    });
+    std::sort(pairs.begin() + first, pairs.end());
   }
-  std::sort(entries.begin(), entries.end());
-  for (int i : nodes) {
-    const Vec3 p = node3(x, i);
-    if ((p.array() < lo.array()).any() || (p.array() > hi.array()).any()) continue;
-    const int64_t k = key(cell_of(p));
-    auto it = std::lower_bound(entries.begin(), entries.end(), std::make_pair(k, -1));
-    for (; it != entries.end() && it->first == k; ++it)
-      if (inside(boxes[it->second], p)) pairs.emplace_back(i, it->second);
-  }
-  std::sort(pairs.begin(), pairs.end());
+  if (!std::is_sorted(query_ids.begin(), query_ids.end())) std::sort(pairs.begin(), pairs.end());
   return pairs;
+}
+
+std::vector<std::pair<int, int>> spatial_hash(const VecX& x, const std::vector<Box>& boxes,
+                                              const std::vector<int>& nodes) {
+  std::vector<Box> points(nodes.size());
+  for (size_t k = 0; k < nodes.size(); ++k) points[k] = {node3(x, nodes[k]), node3(x, nodes[k])};
+  return grid_overlaps(boxes, points, nodes, [](int, int) { return false; });
 }
 
 }  // namespace
@@ -121,36 +163,19 @@ std::vector<std::pair<int, int>> broad_phase_pairs(const VecX& x, const std::vec
 
 std::vector<std::pair<int, int>> edge_box_pairs(const VecX& x, const std::vector<std::pair<int, int>>& edges,
                                                 const std::vector<int>& query_edges, double margin) {
-  std::vector<Box> boxes(edges.size());
-  double widest_x = 0;
+  std::vector<Box> boxes(edges.size()), queries;
   for (size_t e = 0; e < edges.size(); ++e) {
     const Vec3 a = node3(x, edges[e].first), b = node3(x, edges[e].second);
     boxes[e] = {a.cwiseMin(b), a.cwiseMax(b)};
-    widest_x = std::max(widest_x, boxes[e].hi.x() - boxes[e].lo.x());
   }
-  std::vector<int> order(edges.size());
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return boxes[a].lo.x() < boxes[b].lo.x(); });
-  std::vector<double> lower_x(order.size());
-  for (size_t k = 0; k < order.size(); ++k) lower_x[k] = boxes[order[k]].lo.x();
-
-  std::vector<std::pair<int, int>> pairs;
+  queries.reserve(query_edges.size());
+  std::vector<char> is_query(edges.size(), 0);
   for (int q : query_edges) {
-    const Vec3 lo = boxes[q].lo.array() - margin, hi = boxes[q].hi.array() + margin;
-    const size_t first = pairs.size();
-    // An edge reaching into [lo.x, hi.x] starts at most its own x extent before lo.x.
-    auto k = std::lower_bound(lower_x.begin(), lower_x.end(), lo.x() - widest_x) - lower_x.begin();
-    for (; k < static_cast<long>(order.size()) && lower_x[k] <= hi.x(); ++k) {
-      const int e = order[k];
-      if (e != q && (boxes[e].hi.array() >= lo.array()).all() && (boxes[e].lo.array() <= hi.array()).all())
-        pairs.emplace_back(q, e);
-    }
-    // Each query's run sorted on its own: with every edge a query (interior edge contact) one
-    // sort of the whole list cost as much as the sweep.
-    std::sort(pairs.begin() + first, pairs.end());
+    queries.push_back({boxes[q].lo.array() - margin, boxes[q].hi.array() + margin});
+    is_query[q] = 1;
   }
-  if (!std::is_sorted(query_edges.begin(), query_edges.end())) std::sort(pairs.begin(), pairs.end());
-  return pairs;
+  // Itself, and a query edge below this one: that pair is (lower, this) from the other side.
+  return grid_overlaps(boxes, queries, query_edges, [&](int q, int e) { return e == q || (is_query[e] && e < q); });
 }
 
 }  // namespace valve

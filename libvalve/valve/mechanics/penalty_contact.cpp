@@ -33,13 +33,9 @@ PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContact
   query_.assign(n, 0);
   for (int i = 0; i < n; ++i) constrained_node_[i] = constrained[3 * i];
   for (int i = 0; i < n; ++i) query_[i] = topology_.has_triangles(i);
-  is_query_edge_.assign(topology_.edges().size(), 0);
   if (opt_.edge_contact)
     for (size_t e = 0; e < topology_.edges().size(); ++e)
-      if (opt_.interior_edges || topology_.boundary_edge()[e]) {
-        query_edges_.push_back(static_cast<int>(e));
-        is_query_edge_[e] = 1;
-      }
+      if (opt_.interior_edges || topology_.boundary_edge()[e]) query_edges_.push_back(static_cast<int>(e));
 }
 
 void PenaltyContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
@@ -91,8 +87,6 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
   edge_pairs_.clear();
   if (opt_.edge_contact) {
     for (const auto& [be, e] : edge_box_pairs(x, edges, query_edges_, detection_)) {
-      // A pair of two query edges is found from both sides; keep one.
-      if (is_query_edge_[e] && e < be) continue;
       const auto [a, b] = edges[be];
       const auto [c, d] = edges[e];
       if (topology_.excluded_edges(a, b, c, d) || all_constrained({a, b, c, d})) continue;

@@ -150,7 +150,6 @@ class PenaltyContactTerm final : public ContactForceTerm {
   std::vector<char> query_;        // nodes with at least one triangle
   std::vector<int> query_edges_;     // indices into edges(): the boundary edges, or all with
                                      // interior_edges; empty without edge contact
-  std::vector<char> is_query_edge_;  // per edge
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted
   std::vector<std::pair<int, int>> edge_pairs_;        // (query edge, edge) candidates
   std::vector<std::pair<int, int>> coupled_;
