@@ -4,7 +4,10 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
+#include <numeric>
 #include <random>
+
 
 #include "support/test_meshes.hpp"
 #include "valve/core/error.hpp"
@@ -161,8 +164,7 @@ TEST_CASE("edge box grid finds the brute-force box pairs and every segment pair 
   const int nodes = 300;
   VecX x(3 * nodes);
   for (int i = 0; i < x.size(); ++i) x[i] = u(gen);
-  // Short edges and a few spanning the whole scene: a long edge starts far left of a box it
-  // reaches into, which the sweep's lower-bound window has to allow for.
+  // Random edges, many spanning much of the scene: boxes that each cover several grid cells.
   std::vector<std::pair<int, int>> edges;
   for (int e = 0; e < 400; ++e) edges.emplace_back(gen() % nodes, gen() % nodes);
   std::vector<int> query;
@@ -225,6 +227,66 @@ TEST_CASE("edge box grid: every edge a query in any order, and a scene collapsed
   const std::vector<std::pair<int, int>> four{{0, 1}, {1, 2}, {2, 3}, {3, 0}};
   const std::vector<std::pair<int, int>> expected{{0, 1}, {0, 2}, {0, 3}, {1, 2}, {1, 3}, {2, 3}};
   CHECK(edge_box_pairs(same, four, {3, 1, 0, 2}, 0.0) == expected);
+}
+
+TEST_CASE("edge box grid over a fine sheet: many cells, one edge across the scene, far-flung and non-finite boxes",
+          "[mechanics][contact]") {
+  // A 30 x 30 sheet of unit edges, gently waved, with the margin about one edge: the grid has
+  // about ten cells per axis in the sheet's plane, so a query spans a few cells while most
+  // targets lie in one (a cell range cut short at either end loses pairs here).
+  const int side = 30;
+  VecX x(3 * (side * side + 2));
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) node3(x, j * side + i) = Vec3(i, j, 0.3 * std::sin(0.7 * i) * std::cos(0.5 * j));
+  node3(x, side * side) = Vec3(-0.5, 14.2, 0.1);
+  node3(x, side * side + 1) = Vec3(29.5, 15.1, -0.1);
+  std::vector<std::pair<int, int>> edges;
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      if (i + 1 < side) edges.emplace_back(j * side + i, j * side + i + 1);
+      if (j + 1 < side) edges.emplace_back(j * side + i, (j + 1) * side + i);
+    }
+  edges.emplace_back(side * side, side * side + 1);  // across the whole sheet
+  std::vector<int> query(edges.size());
+  std::iota(query.begin(), query.end(), 0);
+  const double margin = 0.9;
+  auto box = [&](int e) {
+    const Vec3 a = node3(x, edges[e].first), b = node3(x, edges[e].second);
+    return std::make_pair(Vec3(a.cwiseMin(b)), Vec3(a.cwiseMax(b)));
+  };
+  std::vector<std::pair<int, int>> brute;
+  for (int q = 0; q < static_cast<int>(edges.size()); ++q)
+    for (int e = q + 1; e < static_cast<int>(edges.size()); ++e) {
+      const auto [qlo, qhi] = box(q);
+      const auto [lo, hi] = box(e);
+      if ((hi.array() >= qlo.array() - margin).all() && (lo.array() <= qhi.array() + margin).all()) brute.emplace_back(q, e);
+    }
+  const auto found = edge_box_pairs(x, edges, query, margin);
+  REQUIRE(brute.size() > 4000);  // 5,251: each edge meets its neighbours in the sheet
+  CHECK(found == brute);
+  const int across = static_cast<int>(edges.size()) - 1;
+  long with_across = 0;
+  for (const auto& [q, e] : found) with_across += (q == across || e == across);
+  CHECK(with_across > 100);  // the long edge meets the rows it crosses
+
+  // Twenty unit triangles 1e6 apart: the mean-size cell would give 1e17 cells, so the cell
+  // grows until the grid fits; both broad phases still find each triangle's own nodes.
+  const int far = 20;
+  VecX y(3 * 3 * far);
+  std::vector<Tri> tris;
+  for (int k = 0; k < far; ++k) {
+    const Vec3 o(1e6 * k, 1e6 * (k % 3), 1e6 * (k % 5));
+    node3(y, 3 * k) = o;
+    node3(y, 3 * k + 1) = o + Vec3(1, 0, 0);
+    node3(y, 3 * k + 2) = o + Vec3(0, 1, 0);
+    tris.push_back({3 * k, 3 * k + 1, 3 * k + 2});
+  }
+  const auto hashed = broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::spatial_hash);
+  CHECK(hashed.size() == static_cast<size_t>(3 * far));
+  CHECK(hashed == broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::sweep_and_prune));
+
+  y[4] = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_AS(broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::spatial_hash), NumericalError);
 }
 
 namespace {

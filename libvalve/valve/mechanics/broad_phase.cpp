@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <numeric>
 
 #include "valve/core/error.hpp"
@@ -70,7 +71,9 @@ bool overlap(const Box& a, const Box& b) {
 /// lists per cell (CSR); a query visits the cells its box overlaps and meets a target once
 /// however many of those cells list it (a stamp per target). The cell is the larger of the
 /// mean target and the mean query box size, so a point visits one cell and an inflated box
-/// a few; it grows while the grid would have more cells than 4 per target.
+/// a few; it grows while the grid would have more than 4 cells per target (plus 4,096). A
+/// target much larger than the mean is listed in every cell it covers: fine for meshes, whose
+/// triangles and edges are of one size, not for boxes of very different sizes.
 template <class Skip>
 std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, const std::vector<Box>& queries,
                                                const std::vector<int>& query_ids, const Skip& skip) {
@@ -78,13 +81,21 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
   if (targets.empty() || queries.empty()) return pairs;
   Vec3 lo = targets[0].lo, hi = targets[0].hi;
   double target_extent = 0, query_extent = 0;
+  // A non-finite coordinate would make the cell count below never fit (and the cast to int
+  // undefined); the solvers stop on non-finite states before they get here.
+  auto finite = [](const Box& b) { return b.lo.allFinite() && b.hi.allFinite(); };
   for (const auto& b : targets) {
+    if (!finite(b)) throw NumericalError("broad phase: non-finite positions");
     target_extent += (b.hi - b.lo).maxCoeff();
     lo = lo.cwiseMin(b.lo);
     hi = hi.cwiseMax(b.hi);
   }
-  for (const auto& b : queries) query_extent += (b.hi - b.lo).maxCoeff();
+  for (const auto& b : queries) {
+    if (!finite(b)) throw NumericalError("broad phase: non-finite positions");
+    query_extent += (b.hi - b.lo).maxCoeff();
+  }
   double cell = std::max({target_extent / targets.size(), query_extent / queries.size(), 1e-12});
+  if (!std::isfinite(cell) || !(hi - lo).allFinite()) throw NumericalError("broad phase: coordinates overflow");
   Eigen::Array3i dims;
   const double max_cells = 4.0 * targets.size() + 4096;
   while (true) {
@@ -95,8 +106,10 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
     }
     cell *= 1.25;
   }
+  // Clamped before the cast: a query far outside the scene stays a valid int.
+  const Eigen::Array3d last = (dims - 1).cast<double>();
   auto cell_of = [&](const Vec3& p) {
-    return (((p - lo) / cell).array().floor().cast<int>().max(0).min(dims - 1)).eval();
+    return ((p - lo) / cell).array().floor().max(0.0).min(last).cast<int>().eval();
   };
   auto index = [&](int cx, int cy, int cz) { return (static_cast<long>(cz) * dims.y() + cy) * dims.x() + cx; };
   std::vector<int> start(static_cast<size_t>(dims.prod()) + 1, 0), entries;
@@ -129,7 +142,9 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
     });
     std::sort(pairs.begin() + first, pairs.end());
   }
-  if (!std::is_sorted(query_ids.begin(), query_ids.end())) std::sort(pairs.begin(), pairs.end());
+  // Runs are sorted per query; ids that are not strictly increasing need a global sort.
+  if (std::adjacent_find(query_ids.begin(), query_ids.end(), std::greater_equal<int>()) != query_ids.end())
+    std::sort(pairs.begin(), pairs.end());
   return pairs;
 }
 
