@@ -241,6 +241,7 @@ int main(int argc, char** argv) {
                           {"free_edge_mm", polyline_length(edge, res.x)},
                           {"midline_rest_mm", mid.length(mesh, X)},
                           {"midline_mm", mid.length(mesh, res.x)}});
+      if (scene.aortic_root) leaflets.back()["belly_drop_mm"] = belly_drop(mesh, res.x, l, scene.aortic_root->axis_direction);
     }
     if (!leaflets.empty()) summary.metrics()["leaflets"] = leaflets;
     const bool ok = res.summary.status == SolverStatus::ok;

@@ -3,7 +3,9 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "valve/core/error.hpp"
 #include "valve/mesh/closest_point.hpp"
 #include "valve/mesh/topology.hpp"
 
@@ -97,6 +99,34 @@ Midline leaflet_midline(const TriMesh& m, int leaflet, int samples) {
   const Vec3 Q = m.points.row(bottom);
   for (int k = 0; k <= samples; ++k) ml.points.push_back(closest_surface_point(m, P + (Q - P) * (double(k) / samples)));
   return ml;
+}
+
+double belly_drop(const TriMesh& m, const VecX& x, int leaflet, const Vec3& axis) {
+  if (x.size() != 3 * m.num_nodes())
+    throw InputError("belly_drop: expected " + std::to_string(3 * m.num_nodes()) + " coordinates, found " + std::to_string(x.size()));
+  const double length = axis.stableNorm();
+  const int top = free_edge_middle_node(m, leaflet);
+  if (!(length > 0) || !std::isfinite(length) || top < 0) return 0;
+  std::vector<char> in_leaflet(m.num_nodes(), 0);
+  for (int t = 0; t < m.num_triangles(); ++t)
+    if (m.leaflet.empty() || m.leaflet[t] == leaflet)
+      for (int k = 0; k < 3; ++k) in_leaflet[m.triangles[t][k]] = 1;
+  // "Up" from the attachment (its mean rest position) towards the free-edge middle.
+  const VecX X = flatten(m.points);
+  Vec3 attachment_mean = Vec3::Zero();
+  int attached = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (in_leaflet[i] && m.roles[i] != NodeRole::free) attachment_mean += node3(X, i), ++attached;
+  if (attached == 0) return 0;
+  attachment_mean /= attached;
+  const Vec3 up = (node3(X, top) - attachment_mean).dot(axis) < 0 ? Vec3(-axis / length) : Vec3(axis / length);
+  int nadir = -1;  // the attachment's lowest rest node
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (in_leaflet[i] && m.roles[i] != NodeRole::free && (nadir < 0 || node3(X, i).dot(up) < node3(X, nadir).dot(up))) nadir = i;
+  double drop = 0;
+  for (int i = 0; i < m.num_nodes(); ++i)
+    if (in_leaflet[i]) drop = std::max(drop, (node3(x, nadir) - node3(x, i)).dot(up));
+  return drop;
 }
 
 }  // namespace valve
