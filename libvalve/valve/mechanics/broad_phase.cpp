@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
 #include <functional>
 #include <numeric>
 
@@ -31,7 +30,6 @@ std::vector<Box> inflated_boxes(const VecX& x, const std::vector<Tri>& triangles
 bool inside(const Box& b, const Vec3& p) {
   return (p.array() >= b.lo.array()).all() && (p.array() <= b.hi.array()).all();
 }
-
 
 std::vector<int> query_nodes(int n, const std::vector<char>& query) {
   std::vector<int> nodes;
@@ -67,13 +65,14 @@ bool overlap(const Box& a, const Box& b) {
 }
 
 /// (query_ids[k], target) for every target box that overlaps query box k and that
-/// skip(query_ids[k], target) does not refuse, sorted by query id, then target. A uniform grid over the targets, stored as one array of target
-/// lists per cell (CSR); a query visits the cells its box overlaps and meets a target once
-/// however many of those cells list it (a stamp per target). The cell is the larger of the
-/// mean target and the mean query box size, so a point visits one cell and an inflated box
-/// a few; it grows while the grid would have more than 4 cells per target (plus 4,096). A
-/// target much larger than the mean is listed in every cell it covers: fine for meshes, whose
-/// triangles and edges are of one size, not for boxes of very different sizes.
+/// skip(query_ids[k], target) does not refuse, sorted by query id, then target. A uniform
+/// grid over the targets, stored as one array of target lists per cell (CSR); a query visits
+/// the cells its box overlaps and meets a target once however many of those cells list it
+/// (a stamp per target). The cell is the larger of the mean target and the mean query box
+/// size, so a point visits one cell and an inflated box a few; it grows while the grid would
+/// have more than 4 cells per target (plus 4,096). A target much larger than the mean is
+/// listed in every cell it covers: fine for meshes, whose triangles and edges are of one
+/// size, not for boxes of very different sizes.
 template <class Skip>
 std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, const std::vector<Box>& queries,
                                                const std::vector<int>& query_ids, const Skip& skip) {
