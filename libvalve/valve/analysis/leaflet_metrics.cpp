@@ -10,6 +10,18 @@
 #include "valve/mesh/topology.hpp"
 
 namespace valve {
+namespace {
+
+/// Per node, 1 if a triangle of `leaflet` uses it (every triangle when the mesh has no labels).
+std::vector<char> leaflet_node_mask(const TriMesh& m, int leaflet) {
+  std::vector<char> in_leaflet(m.num_nodes(), 0);
+  for (int t = 0; t < m.num_triangles(); ++t)
+    if (m.leaflet.empty() || m.leaflet[t] == leaflet)
+      for (int k = 0; k < 3; ++k) in_leaflet[m.triangles[t][k]] = 1;
+  return in_leaflet;
+}
+
+}  // namespace
 
 std::vector<int> free_edge_polyline(const TriMesh& m, int leaflet) {
   std::vector<Tri> tris;
@@ -83,10 +95,7 @@ Midline leaflet_midline(const TriMesh& m, int leaflet, int samples) {
   Midline ml;
   const int top = free_edge_middle_node(m, leaflet);
   if (top < 0) return ml;
-  std::vector<char> in_leaflet(m.num_nodes(), 0);
-  for (int t = 0; t < m.num_triangles(); ++t)
-    if (m.leaflet.empty() || m.leaflet[t] == leaflet)
-      for (int k = 0; k < 3; ++k) in_leaflet[m.triangles[t][k]] = 1;
+  const std::vector<char> in_leaflet = leaflet_node_mask(m, leaflet);
   const Vec3 P = m.points.row(top);
   int bottom = -1;
   double far = -1;
@@ -107,22 +116,20 @@ double belly_drop(const TriMesh& m, const VecX& x, int leaflet, const Vec3& axis
   const double length = axis.stableNorm();
   const int top = free_edge_middle_node(m, leaflet);
   if (!(length > 0) || !std::isfinite(length) || top < 0) return 0;
-  std::vector<char> in_leaflet(m.num_nodes(), 0);
-  for (int t = 0; t < m.num_triangles(); ++t)
-    if (m.leaflet.empty() || m.leaflet[t] == leaflet)
-      for (int k = 0; k < 3; ++k) in_leaflet[m.triangles[t][k]] = 1;
+  const std::vector<char> in_leaflet = leaflet_node_mask(m, leaflet);
   // "Up" from the attachment (its mean rest position) towards the free-edge middle.
   const VecX X = flatten(m.points);
   Vec3 attachment_mean = Vec3::Zero();
   int attached = 0;
   for (int i = 0; i < m.num_nodes(); ++i)
-    if (in_leaflet[i] && m.roles[i] != NodeRole::free) attachment_mean += node3(X, i), ++attached;
+    if (in_leaflet[i] && m.boundary[i] == BoundaryType::attached) attachment_mean += node3(X, i), ++attached;
   if (attached == 0) return 0;
   attachment_mean /= attached;
   const Vec3 up = (node3(X, top) - attachment_mean).dot(axis) < 0 ? Vec3(-axis / length) : Vec3(axis / length);
   int nadir = -1;  // the attachment's lowest rest node
   for (int i = 0; i < m.num_nodes(); ++i)
-    if (in_leaflet[i] && m.roles[i] != NodeRole::free && (nadir < 0 || node3(X, i).dot(up) < node3(X, nadir).dot(up))) nadir = i;
+    if (in_leaflet[i] && m.boundary[i] == BoundaryType::attached && (nadir < 0 || node3(X, i).dot(up) < node3(X, nadir).dot(up)))
+      nadir = i;
   double drop = 0;
   for (int i = 0; i < m.num_nodes(); ++i)
     if (in_leaflet[i]) drop = std::max(drop, (node3(x, nadir) - node3(x, i)).dot(up));

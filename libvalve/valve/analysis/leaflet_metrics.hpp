@@ -39,10 +39,11 @@ Midline leaflet_midline(const TriMesh& mesh, int leaflet = 0, int samples = 200)
 
 /// How far the belly of leaflet `leaflet` hangs below its attachment along a valve axis (mm,
 /// ≥ 0): the largest distance along `axis` by which a node of the leaflet at positions x lies
-/// beyond the leaflet's lowest attached node (not NodeRole free; lowest at rest) in the same
-/// direction. "Up" points from the mean rest position of the attached nodes towards the
-/// free-edge middle, so the axis may point either way. The seed judged fiber fields by it: fibers parallel to
-/// the free edge let the belly billow toward the ventricle, fibers at 25° do not (Fig. 4.7).
+/// beyond the leaflet's lowest attached node (BoundaryType attached, as for the midline;
+/// lowest at rest) in the same direction. "Up" points from the mean rest position of the
+/// attached nodes towards the free-edge middle, so the axis may point either way. The seed
+/// judged fiber fields by it: fibers parallel to the free edge let the belly billow toward
+/// the ventricle, fibers at 25° do not (Fig. 4.7).
 /// 0 when the leaflet has no attached node, no free edge or the axis has no direction;
 /// throws InputError when x does not have 3N entries.
 double belly_drop(const TriMesh& mesh, const VecX& x, int leaflet, const Vec3& axis);
