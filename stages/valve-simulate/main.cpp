@@ -204,7 +204,7 @@ int main(int argc, char** argv) {
     // Coaptation (seed 4.2.5) wherever leaflets can meet: a mesh of several leaflets.
     std::optional<CoaptationResult> coaptation;
     if (std::set<int>(mesh.leaflet.begin(), mesh.leaflet.end()).size() > 1) {
-      CoaptationOptions coaptation_options;
+      CoaptationOptions coaptation_options = scene.coaptation;
       if (scene.aortic_root) coaptation_options.axis = ValveAxis{scene.aortic_root->axis_point, scene.aortic_root->axis_direction};
       coaptation = analyze_coaptation(mesh, res.x, coaptation_options);
       Eigen::MatrixXd gap(mesh.num_nodes(), 1), flag(mesh.num_nodes(), 1);
@@ -219,8 +219,10 @@ int main(int argc, char** argv) {
       summary.metrics()["coaptation"] = {{"closed", coaptation->closed}, {"central_gap", coaptation->central_gap},
                                          {"min_height_mm", coaptation->min_height_mm},
                                          {"max_free_edge_axis_distance_mm", coaptation->max_free_edge_axis_distance_mm},
-                                         {"threshold_mm", CoaptationOptions{}.threshold_mm},
-                                         {"free_edge_offset_mm", CoaptationOptions{}.free_edge_offset_mm}, {"leaflets", per}};
+                                         {"gap", to_string(coaptation_options.gap)},
+                                         {"threshold_mm", coaptation_options.threshold_mm},
+                                         {"free_edge_offset_mm", coaptation_options.free_edge_offset_mm},
+                                         {"commissure_margin", coaptation_options.commissure_margin}, {"leaflets", per}};
     }
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);

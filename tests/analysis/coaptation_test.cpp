@@ -269,6 +269,56 @@ TEST_CASE("coaptation: a band that begins below a free edge that does not touch"
   CHECK_FALSE(deep.leaflets[0].closed);
 }
 
+TEST_CASE("coaptation: free edges side by side at different heights (ray against nearest)", "[analysis][coaptation]") {
+  // No lips. Leaflet 0 is the lower sheet, leaflet 1 lies 0.25 mm above it (the penalty
+  // contact's separation) over x in [0.25, 9.75], y in [6, 9.9]: its free edge stops
+  // 0.1 mm short of leaflet 0's. The rays from leaflet 0's free edge (y = 10, along ±z) pass
+  // beside leaflet 1; the nearest point of leaflet 1 is on its free edge, hypot(0.1, 0.25) away.
+  TriMesh m;
+  add_sheet(m, {0, 10, 0, 10, 20, 20, 0.0, 0.0, 0, false});
+  add_sheet(m, {0.25, 9.75, 6.0, 9.9, 19, 13, 0.25, 0.0, 1, false});
+  m.fill_defaults();
+  const VecX x = flatten(m.points);
+  const double edge_gap = std::hypot(0.1, 0.25);
+
+  const CoaptationResult ray = analyze_coaptation(m, x);
+  CHECK(ray.gap_mm[lower(10, 20)] == kCoaptationNoHit);
+  CHECK(ray.gap_mm[lower(10, 16)] == Approx(0.25).margin(1e-9));
+  CHECK(ray.leaflets[0].coapting_fraction_of_free_edge == 0);
+  // Band from row y = 9.5 (0.5 mm below the free edge) down to y = 6: 3.5 mm.
+  CHECK(ray.leaflets[0].min_height_mm == Approx(3.5).margin(1e-9));
+  CHECK(ray.central_gap);
+
+  CoaptationOptions o;
+  o.gap = GapMeasure::nearest;
+  const CoaptationResult near = analyze_coaptation(m, x, o);
+  for (int i = 1; i <= 19; ++i) {
+    INFO("free-edge node " << i);
+    CHECK(near.gap_mm[lower(i, 20)] == Approx(edge_gap).margin(1e-9));
+    CHECK(near.coapting[lower(i, 20)] == 1);
+  }
+  CHECK(near.gap_mm[lower(10, 16)] == Approx(0.25).margin(1e-9));  // flat part: as the ray
+  CHECK(near.gap_mm[lower(10, 12)] == Approx(0.25).margin(1e-9));  // y = 6, on the border
+  CHECK(near.gap_mm[lower(10, 11)] == Approx(std::hypot(0.5, 0.25)).margin(1e-9));  // y = 5.5
+  CHECK(near.coapting[lower(10, 11)] == 0);
+  // The rim: x = 0 lies 0.25 mm beside leaflet 1's side border, within the 0.5 mm threshold.
+  CHECK(near.gap_mm[lower(0, 16)] == Approx(std::hypot(0.25, 0.25)).margin(1e-9));
+  CHECK(near.coapting[lower(0, 16)] == 1);
+  CHECK(ray.coapting[lower(0, 16)] == 0);
+  // Corners (x = 0, 10) are also within the threshold of leaflet 1's free-edge corners.
+  CHECK(near.leaflets[0].coapting_fraction_of_free_edge == Approx(1.0));
+  CHECK(near.leaflets[0].min_height_mm == Approx(4.0).margin(1e-9));  // y = 10 down to y = 6
+  CHECK_FALSE(near.central_gap);
+  // Leaflet 1 lies wholly over leaflet 0: every node 0.25 mm from it either way.
+  for (int v = upper(0, 0); v < m.num_nodes(); ++v) CHECK(near.gap_mm[v] == Approx(0.25).margin(1e-9));
+
+  // A leaflet alone has nothing to be near.
+  TriMesh alone;
+  add_sheet(alone, lower_sheet());
+  alone.fill_defaults();
+  for (double g : analyze_coaptation(alone, flatten(alone.points), o).gap_mm) CHECK(g == kCoaptationNoHit);
+}
+
 TEST_CASE("coaptation: the commissure margin excludes the free-edge ends", "[analysis][coaptation]") {
   const TriMesh m = overlap_pair(0.3);
   CoaptationOptions o;

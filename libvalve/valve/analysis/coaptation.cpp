@@ -12,6 +12,7 @@
 #include <functional>
 #include <iomanip>
 #include <limits>
+#include <map>
 #include <queue>
 #include <sstream>
 
@@ -44,19 +45,27 @@ struct HitDistance {
   double operator()(const Segment& s) const { return std::min((*this)(s.source()), (*this)(s.target())); }
 };
 
-// The ray queries, with the CGAL state kept out of the header.
-class LeafletRayCaster {
+// The gap queries, with the CGAL state kept out of the header: one tree over every
+// triangle for the rays (which skip their own leaflet's hits) and one per leaflet for the
+// nearest points (CGAL's closest-point query has no skip).
+class LeafletSurfaces {
  public:
-  LeafletRayCaster(const TriMesh& m, const std::vector<int>& tri_leaflet, const VecX& x) {
+  LeafletSurfaces(const TriMesh& m, const std::vector<int>& tri_leaflet, const VecX& x) {
     for (int t = 0; t < m.num_triangles(); ++t) {
       const Tri& tri = m.triangles[t];
       K::Triangle_3 T(to_point(node3(x, tri[0])), to_point(node3(x, tri[1])), to_point(node3(x, tri[2])));
       if (T.is_degenerate()) continue;  // no area to hit; CGAL's intersection requires a proper triangle
       triangles_.push_back(T);
       leaflet_.push_back(tri_leaflet[t]);
+      per_leaflet_[tri_leaflet[t]].triangles.push_back(T);
     }
     tree_.insert(triangles_.begin(), triangles_.end());
     tree_.build();
+    for (auto& [id, s] : per_leaflet_) {
+      s.tree.insert(s.triangles.begin(), s.triangles.end());
+      s.tree.build();
+      s.tree.accelerate_distance_queries();
+    }
   }
 
   /// Distance along the ray (p, dir) to the nearest triangle not of leaflet `own`; inf if none.
@@ -73,11 +82,24 @@ class LeafletRayCaster {
 #endif
   }
 
+  /// Distance from p to the nearest point of a triangle not of leaflet `own`; inf if none.
+  double nearest(const Vec3& p, int own) const {
+    double d2 = kInf;
+    for (const auto& [id, s] : per_leaflet_)
+      if (id != own) d2 = std::min(d2, CGAL::to_double(s.tree.squared_distance(to_point(p))));
+    return std::sqrt(d2);
+  }
+
  private:
   static Point to_point(const Vec3& v) { return Point(v[0], v[1], v[2]); }
+  struct Surface {
+    Triangles triangles;
+    Tree tree;
+  };
   Triangles triangles_;
   std::vector<int> leaflet_;  // per entry of triangles_
   Tree tree_;
+  std::map<int, Surface> per_leaflet_;
 };
 
 // Multi-source Dijkstra over the edges `adj` from `sources`: distance to and index (into
@@ -173,16 +195,18 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
   r.gap_mm.assign(n, kCoaptationNoHit);
   r.coapting.assign(n, 0);
   std::vector<char> shared(n, 0);
-  const LeafletRayCaster rays(m, tri_leaflet, x);
+  const LeafletSurfaces surfaces(m, tri_leaflet, x);
   for (int i = 0; i < n; ++i) {
     double gap = kInf;
     if (node_leaflets[i].size() > 1) {
       gap = 0;
       shared[i] = 1;
+    } else if (node_leaflets[i].size() == 1 && opt.gap == GapMeasure::nearest) {
+      gap = surfaces.nearest(node3(x, i), node_leaflets[i][0]);
     } else if (node_leaflets[i].size() == 1 && normal[i].norm() > 0) {
       const Vec3 dir = normal[i].normalized();
       const Vec3 p = node3(x, i);
-      gap = std::min(rays.cast(p, dir, node_leaflets[i][0]), rays.cast(p, -dir, node_leaflets[i][0]));
+      gap = std::min(surfaces.cast(p, dir, node_leaflets[i][0]), surfaces.cast(p, -dir, node_leaflets[i][0]));
     }
     if (std::isfinite(gap)) r.gap_mm[i] = gap;
     r.coapting[i] = gap <= opt.threshold_mm ? 1 : 0;

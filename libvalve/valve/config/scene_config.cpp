@@ -190,6 +190,17 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     r.record("bending", b.finish());
     sc.bending = bc;
   }
+  if (r.has("coaptation")) {
+    JsonReader c = r.object("coaptation");
+    CoaptationOptions& co = sc.coaptation;
+    co.gap = c.choice("gap", {"ray", "nearest"}, std::string(to_string(co.gap))) == "nearest" ? GapMeasure::nearest
+                                                                                             : GapMeasure::ray;
+    co.threshold_mm = c.quantity("threshold", Dimension::length, std::to_string(co.threshold_mm) + " mm", 1e-6, 100);
+    co.free_edge_offset_mm =
+        c.quantity("free_edge_offset", Dimension::length, std::to_string(co.free_edge_offset_mm) + " mm", 0.0, 1e3);
+    co.commissure_margin = c.number("commissure_margin", co.commissure_margin, 0.0, 0.499);
+    r.record("coaptation", c.finish());
+  }
   if (r.has("chordae")) {
     JsonReader c = r.object("chordae");
     ChordaeConfig cc;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "valve/analysis/coaptation.hpp"
 #include "valve/config/json_reader.hpp"
 #include "valve/config/material_config.hpp"
 #include "valve/mechanics/contact.hpp"
@@ -120,6 +121,8 @@ struct SceneConfig {
   std::optional<AorticRootConfig> aortic_root;
   std::optional<ChordaeConfig> chordae;
   std::optional<BendingConfig> bending;
+  /// How valve-simulate measures coaptation of a multi-leaflet mesh (the axis comes from aortic_root).
+  CoaptationOptions coaptation;
   std::optional<AnnulusMotionConfig> annulus_motion;
   std::vector<LeafletMaterialConfig> leaflet_materials;
   std::vector<double> load_increments{1.0};
