@@ -8,6 +8,10 @@
 // --run ID (repeatable) runs only those runs (ids as `list` prints them), and the tables
 // and plots then hold only them. --force reruns everything. --dry-run prints which steps would run and why, and writes
 // nothing. Each run appends to DIR/pipeline.log and writes DIR/provenance.json.
+// Pipelines named in "requires" run first, whole, into DIR/<out> (--run selects runs of
+// the named pipeline only); `list` names them, --dry-run shows their steps too (a step
+// reading a required pipeline's files shows "cached" when those files are up to date now,
+// although the required steps listed to run before it may change them).
 // `list` validates the pipeline and prints each run's id and commands without running them.
 // Exit 0 ok, 2 bad pipeline (one line naming file and key, nothing written), 3 some run or
 // plot failed (the summary says which; the tables still hold what the other runs made).
@@ -62,6 +66,9 @@ int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
               vars.empty() ? "" : ((spec.sweep == SweepKind::grid ? ", grid over " : ", zip of ") + vars).c_str(),
               spec.steps.size());
   if (!cl.get("out")) std::printf("# OUT stands for the --out folder\n");
+  for (const auto& r : spec.required)
+    std::printf("requires %s (%zu run(s)), run first into %s\n", r.spec->file.c_str(),
+                expand_runs(*r.spec, out / r.out).size(), show((normalized_dir(out) / r.out).string()).c_str());
   for (const auto& run : runs) {
     std::printf("run %s\n", run.run_id.c_str());
     for (size_t s = 0; s < run.steps.size(); ++s) {
@@ -77,12 +84,19 @@ int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
   return 0;
 }
 
-// What `run` would do, step by step, without writing anything.
-int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
+// What `run` would do, step by step, without writing anything: the required pipelines
+// first, as `run` runs them. Adds to the step counts.
+void dry_run_steps(const PipelineSpec& spec, const RunnerOptions& options, size_t& to_run, size_t& cached) {
+  for (const auto& r : spec.required) {
+    RunnerOptions upstream = options;
+    upstream.out_dir = normalized_dir(options.out_dir) / r.out;
+    upstream.only_runs.clear();
+    std::printf("required pipeline %s into %s\n", r.spec->file.c_str(), upstream.out_dir.string().c_str());
+    dry_run_steps(*r.spec, upstream, to_run, cached);
+  }
   const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
   const auto runs = select_runs(expand_runs(spec, options.out_dir), options.only_runs, "--run");
   const auto plans = plan_runs(runs, stage_hashes(exes), options.force);
-  size_t to_run = 0, cached = 0;
   for (size_t r = 0; r < runs.size(); ++r) {
     std::printf("run %s\n", runs[r].run_id.c_str());
     for (size_t s = 0; s < runs[r].steps.size(); ++s) {
@@ -91,6 +105,12 @@ int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
       std::printf("  [%s] %s\n", runs[r].steps[s].name.c_str(), why ? ("run: " + *why).c_str() : "cached");
     }
   }
+}
+
+int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
+  select_runs(expand_runs(spec, options.out_dir), options.only_runs, "--run");  // an unknown --run fails first
+  size_t to_run = 0, cached = 0;
+  dry_run_steps(spec, options, to_run, cached);
   std::printf("dry run: %zu step(s) would run, %zu cached\n", to_run, cached);
   return 0;
 }

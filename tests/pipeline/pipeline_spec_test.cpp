@@ -145,7 +145,7 @@ TEST_CASE("placeholder errors name the key path before anything runs", "[pipelin
 
 TEST_CASE("structural errors: keys, steps, variables, zip, gather, plots", "[pipeline]") {
   CHECK(message_of(R"({"stepz": []})") ==
-        "P.json: stepz: expected a known key (name, description, variables, sweep, steps, gather, aggregate, plots), found an unknown key");
+        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, steps, gather, aggregate, plots), found an unknown key");
   CHECK_THAT(message_of(R"({"name": "x"})"), Catch::Contains("steps: expected a list of steps, found nothing"));
   CHECK_THAT(message_of(R"({"steps": []})"), Catch::Contains("steps: expected a non-empty list of steps"));
   CHECK_THAT(message_of(R"({"steps": [{"args": []}]})"), Catch::Contains("steps[0].stage: expected a string, found nothing"));

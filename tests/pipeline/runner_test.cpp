@@ -250,3 +250,109 @@ TEST_CASE("runner: unchanged steps are cached, changed inputs and failures rerun
   CHECK_THAT(log, Catch::Contains("step a failed exit 4"));
   CHECK_THAT(log, Catch::Contains("(forced)"));
 }
+
+TEST_CASE("runner: required pipelines run first, cached like any other, and a failure stops the rest", "[pipeline]") {
+  TempDir tmp("required");
+  write_fake_stages(tmp.path() / "bin");
+  // valve-make TEXT: writes TEXT to made.txt; valve-readback FILE: reports FILE's number.
+  write_script(tmp.path() / "bin" / "valve-make", "echo \"$1\" > made.txt");
+  write_script(tmp.path() / "bin" / "valve-readback",
+               "printf '{\"status\": \"ok\", \"value\": %s}\\n' \"$(cat \"$1\")\" > report.summary.json");
+  write_text(tmp.path() / "up.json", R"({"variables": {"n": [1, 2]},
+    "steps": [{"stage": "valve-make", "args": ["${n}0"]}]})");
+  const auto spec = write_and_load(tmp.path(), R"({
+    "requires": [{"pipeline": "up.json", "out": "upstream"}],
+    "steps": [{"stage": "valve-readback", "args": ["${out_dir}/upstream/runs/n-2/made.txt"]}],
+    "gather": [{"csv": "values.csv", "summary": "report.summary.json", "columns": {"value": "summary:value"}}]
+  })");
+  REQUIRE(spec.required.size() == 1);
+  CHECK(spec.required[0].spec->steps.size() == 1);
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  options.only_runs = {"single"};  // names a run of this pipeline, not of up.json
+  const PipelineOutcome first = run_pipeline(spec, options);
+  CHECK(first.status == "ok");
+  CHECK(read_text(tmp.path() / "out/values.csv") == "value\n20\n");
+  CHECK(read_text(tmp.path() / "out/upstream/runs/n-1/made.txt") == "10\n");  // every upstream run ran
+  const ojson summary = ojson::parse(read_text(tmp.path() / "out/pipeline.summary.json"));
+  CHECK(summary["metrics"]["required"][0]["status"] == "ok");
+  CHECK(ojson::parse(read_text(tmp.path() / "out/upstream/pipeline.summary.json"))["status"] == "ok");
+
+  // Again: the upstream steps are cached.
+  const PipelineOutcome second = run_pipeline(spec, options);
+  CHECK(second.status == "ok");
+  const std::string upstream_log = read_text(tmp.path() / "out/upstream/pipeline.log");
+  CHECK(std::count(upstream_log.begin(), upstream_log.end(), '\n') == 4);
+  CHECK_THAT(upstream_log, Catch::Contains("run n-2 step valve-make cached"));
+
+  // An upstream failure: no run of the requiring pipeline starts.
+  write_text(tmp.path() / "bad.json", R"({"steps": [{"stage": "valve-exit", "args": ["5"]}]})");
+  const auto failing = write_and_load(tmp.path(), R"({
+    "requires": [{"pipeline": "bad.json", "out": "bad"}],
+    "steps": [{"stage": "valve-report", "args": ["1"]}]})");
+  options.out_dir = tmp.path() / "out_failing";
+  options.only_runs.clear();
+  const PipelineOutcome failed = run_pipeline(failing, options);
+  CHECK(failed.exit_code == 3);
+  CHECK_THAT(failed.reason, Catch::Contains("requires[0]") && Catch::Contains("bad.json") &&
+                                Catch::Contains("out_failing/bad") && Catch::Contains("exited with 5") &&
+                                Catch::Contains("no run of this pipeline started"));
+  REQUIRE(failed.runs.size() == 1);
+  CHECK_FALSE(failed.runs[0].ok);
+  CHECK_THAT(failed.runs[0].reason, Catch::Contains("not started"));
+  CHECK_FALSE(fs::exists(tmp.path() / "out_failing/runs"));
+  const ojson failed_summary = ojson::parse(read_text(tmp.path() / "out_failing/pipeline.summary.json"));
+  CHECK(failed_summary["status"] == "failed");
+  CHECK(failed_summary["metrics"]["required"][0]["status"] == "failed");
+  CHECK(failed_summary["metrics"]["runs_failed"] == 1);
+  // The same metrics as a summary of a pipeline whose runs ran.
+  std::vector<std::string> keys_ok, keys_failed;
+  for (auto it = summary["metrics"].begin(); it != summary["metrics"].end(); ++it) keys_ok.push_back(it.key());
+  for (auto it = failed_summary["metrics"].begin(); it != failed_summary["metrics"].end(); ++it) keys_failed.push_back(it.key());
+  CHECK(keys_ok == keys_failed);
+}
+
+TEST_CASE("pipeline spec: requires is checked with the file, cycles and misplaced folders rejected", "[pipeline]") {
+  TempDir tmp("requires_spec");
+  write_text(tmp.path() / "up.json", R"({"steps": [{"stage": "valve-make", "args": []}]})");
+  const auto message = [&](const std::string& text) {
+    try {
+      write_and_load(tmp.path(), text);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no error)");
+  };
+  const std::string step = R"("steps": [{"stage": "valve-make", "args": []}])";
+  CHECK(message(R"({"requires": [{"pipeline": "up.json", "out": "up"}], )" + step + "}") == "(no error)");
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "absent.json", "out": "up"}], )" + step + "}"),
+             Catch::Contains("P.json") && Catch::Contains("requires[0].pipeline") && Catch::Contains("absent.json"));
+  for (const std::string out : {"runs", "runs/x", "../up", "/tmp/up", "pipeline.summary.json", ".", "./", "a/..",
+                                 "pipeline.log", "provenance.json"})
+    CHECK_THAT(message(R"({"requires": [{"pipeline": "up.json", "out": ")" + out + R"("}], )" + step + "}"),
+               Catch::Contains("requires[0].out"));
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "up.json", "out": "up"}, {"pipeline": "up.json", "out": "up/inner"}], )" +
+                     step + "}"),
+             Catch::Contains("requires[1].out") && Catch::Contains("requires[0]"));
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "up.json", "out": "tables"}], )" + step +
+                     R"(, "gather": [{"csv": "tables/a.csv", "summary": "s.json", "columns": {"a": "1"}}]})"),
+             Catch::Contains("requires[0].out") && Catch::Contains("tables/a.csv"));
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "up.json", "out": "up", "jobs": 2}], )" + step + "}"),
+             Catch::Contains("requires[0].jobs"));
+  CHECK_THAT(message(R"({"requires": {"pipeline": "up.json"}, )" + step + "}"), Catch::Contains("requires: expected a list"));
+  // P requires Q requires P; P requires itself.
+  write_text(tmp.path() / "Q.json", R"({"requires": [{"pipeline": "P.json", "out": "p"}], )" + step + "}");
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "Q.json", "out": "q"}], )" + step + "}"),
+             Catch::Contains("Q.json") && Catch::Contains("requires[0].pipeline") && Catch::Contains("cycle P.json -> Q.json -> P.json"));
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "./P.json", "out": "p"}], )" + step + "}"),
+             Catch::Contains("cycle P.json -> P.json"));
+  // A symbolic link to this file is this file.
+  fs::create_symlink(tmp.path() / "P.json", tmp.path() / "link.json");
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "link.json", "out": "p"}], )" + step + "}"),
+             Catch::Contains("requires[0].pipeline") && Catch::Contains("cycle P.json -> link.json"));
+  // A mistake inside the required file is reported with its own name.
+  write_text(tmp.path() / "broken.json", R"({"steps": []})");
+  CHECK_THAT(message(R"({"requires": [{"pipeline": "broken.json", "out": "b"}], )" + step + "}"),
+             Catch::Contains("broken.json: steps"));
+}

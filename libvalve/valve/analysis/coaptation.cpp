@@ -50,6 +50,8 @@ struct HitDistance {
 // nearest points (CGAL's closest-point query has no skip).
 class LeafletSurfaces {
  public:
+  LeafletSurfaces(const LeafletSurfaces&) = delete;  // the trees point into the triangle vectors
+  LeafletSurfaces& operator=(const LeafletSurfaces&) = delete;
   LeafletSurfaces(const TriMesh& m, const std::vector<int>& tri_leaflet, const VecX& x) {
     for (int t = 0; t < m.num_triangles(); ++t) {
       const Tri& tri = m.triangles[t];

@@ -96,8 +96,8 @@ struct CoaptationOptions {
                           // an axis that is not finite or has no direction
 };
 
-/// Value of gap_mm for a node whose rays hit no other leaflet (and for nodes without
-/// triangles). A negative sentinel, never inf or NaN, so that it can be written to files
+/// Value of gap_mm for a node whose rays hit no other leaflet, or (nearest) for a mesh with
+/// no other leaflet, and for nodes without triangles. A negative sentinel, never inf or NaN, so that it can be written to files
 /// and told apart from every real distance.
 constexpr double kCoaptationNoHit = -1.0;
 
@@ -127,7 +127,7 @@ struct LeafletCoaptation {
 };
 
 struct CoaptationResult {
-  std::vector<double> gap_mm;  // per node, mm; kCoaptationNoHit where no ray hits
+  std::vector<double> gap_mm;  // per node, mm; kCoaptationNoHit where no other leaflet is found
   std::vector<int> coapting;   // per node, 1 if 0 <= gap_mm <= threshold, else 0
   std::vector<LeafletCoaptation> leaflets;  // one per leaflet id present, ascending
   bool closed = false;       // every leaflet closed (false for a mesh with one leaflet)

@@ -462,6 +462,63 @@ PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const st
   return plot;
 }
 
+// The "requires" entries, each parsed with the chain of files that led to it. Runs after
+// the gather, aggregate and plot entries, whose files an "out" folder must not shadow.
+void parse_required(const ojson& list, const std::string& file, const std::vector<fs::path>& required_by,
+                    PipelineSpec& spec) {
+  if (!list.is_array()) fail(file, "requires", "a list of {pipeline, out}", describe(list));
+  for (size_t i = 0; i < list.size(); ++i) {
+    RequiredPipeline required;
+    required.key = "requires[" + std::to_string(i) + "]";
+    const ojson& e = list[i];
+    if (!e.is_object()) fail(file, required.key, "an object {pipeline, out}", describe(e));
+    check_keys(e, {"pipeline", "out"}, file, required.key);
+    const std::string out_key = required.key + ".out";
+    {
+      // A folder of its own: not DIR itself, not outside it, not a name the runner writes.
+      const std::string text = required_string(e, "out", file, required.key);
+      const fs::path p = fs::path(text).lexically_normal();
+      bool bad = p.is_absolute() || p.empty() || p == "." || p == "./";
+      for (const auto& part : p) bad = bad || part == "..";
+      const std::string head = p.empty() ? "" : p.begin()->string();
+      bad = bad || head == "runs" || head == "pipeline.summary.json" || head == "pipeline.log" || head == "provenance.json";
+      if (bad)
+        fail(file, out_key, "a relative folder inside the output folder (not ., runs, pipeline.log, provenance.json, pipeline.summary.json)",
+             "\"" + text + "\"");
+      required.out = p.string();
+    }
+    const auto shadows = [&](const std::string& name) {
+      const fs::path a = fs::path(name).lexically_normal(), b = fs::path(required.out);
+      return a == b || std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end() ||
+             std::mismatch(a.begin(), a.end(), b.begin(), b.end()).first == a.end();
+    };
+    for (const auto& earlier : spec.required)
+      if (shadows(earlier.out)) fail(file, out_key, "a folder apart from the other required pipelines'", "\"" + required.out + "\" (also " + earlier.key + ")");
+    std::vector<std::string> own_files = gather_csvs(spec);
+    for (const auto& a : spec.aggregates) own_files.push_back(a.csv);
+    for (const auto& p : spec.plots) own_files.push_back(p.png);
+    for (const auto& f : own_files)
+      if (shadows(f)) fail(file, out_key, "a folder apart from this pipeline's tables and plots", "\"" + required.out + "\" (and " + f + ")");
+
+    const std::string pipeline_key = required.key + ".pipeline";
+    const fs::path target = (spec.pipeline_dir / required_string(e, "pipeline", file, required.key)).lexically_normal();
+    // Compared as canonical paths, so that a symbolic link cannot hide a cycle.
+    const fs::path identity = fs::weakly_canonical(target);
+    if (std::find(required_by.begin(), required_by.end(), identity) != required_by.end()) {
+      std::string cycle;
+      for (const auto& f : required_by) cycle += f.filename().string() + " -> ";
+      fail(file, pipeline_key, "a pipeline that does not require this one", "a cycle " + cycle + target.filename().string());
+    }
+    std::error_code ec;
+    if (!fs::is_regular_file(target, ec)) fail(file, pipeline_key, "an existing pipeline file", "\"" + target.string() + "\"");
+    std::vector<fs::path> chain = required_by;
+    chain.push_back(identity);
+    required.spec = std::make_shared<const PipelineSpec>(
+        parse_pipeline(load_pipeline_json(target), target.string(), target.parent_path(), chain));
+    spec.required.push_back(std::move(required));
+  }
+}
+
 }  // namespace
 
 fs::path normalized_dir(const fs::path& dir) {
@@ -484,8 +541,14 @@ ojson load_pipeline_json(const fs::path& path) {
 }
 
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir) {
+  return parse_pipeline(doc, file, pipeline_dir, {fs::weakly_canonical(normalized_dir(pipeline_dir) / fs::path(file).filename())});
+}
+
+PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir,
+                            const std::vector<fs::path>& required_by) {
   if (!doc.is_object()) fail(file, "(top level)", "an object", describe(doc));
-  check_keys(doc, {"name", "description", "variables", "sweep", "steps", "gather", "aggregate", "plots"}, file, "");
+  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "steps", "gather", "aggregate", "plots"},
+             file, "");
   PipelineSpec spec;
   spec.file = file;
   spec.pipeline_dir = normalized_dir(pipeline_dir);
@@ -570,11 +633,13 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
                "\"" + spec.plots.back().png + "\" (also " + spec.plots[j].key + ")");
     }
   }
+  if (doc.contains("requires")) parse_required(doc["requires"], file, required_by, spec);
   return spec;
 }
 
 PipelineSpec load_pipeline(const fs::path& path) {
-  return parse_pipeline(load_pipeline_json(path), path.string(), fs::absolute(path).parent_path());
+  const fs::path absolute = fs::absolute(path).lexically_normal();
+  return parse_pipeline(load_pipeline_json(path), path.string(), absolute.parent_path(), {fs::weakly_canonical(absolute)});
 }
 
 std::vector<std::string> gather_csvs(const PipelineSpec& spec) {

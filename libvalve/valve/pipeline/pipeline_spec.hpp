@@ -9,6 +9,10 @@
 // {
 //   "name": "seed_biaxial",              // optional, default: the file name without .json
 //   "description": "...",                // optional free text
+//   "requires": [                        // optional: pipelines run (whole, cached as usual)
+//     {"pipeline": "image_to_mesh.json", //   before this one's runs; the file relative to
+//      "out": "image_to_mesh"}           //   this one's folder, its DIR the folder "out"
+//   ],                                   //   inside this DIR (see "Required pipelines")
 //   "variables": {                       // optional sweep variables, in this order
 //     "angle": [0, 45],                  //   a non-empty list of numbers, strings, booleans or objects
 //     "ratio": [{"label": "20:60", "sx": "20 kPa"}, {"label": "60:60", "sx": "60 kPa"}],
@@ -70,6 +74,14 @@
 // column of the "from" table (known before running: the gather columns, or the output
 // columns of the earlier aggregate), and the output column names must be distinct.
 //
+// Required pipelines: each entry of "requires" is parsed and checked with this file (a
+// pipeline that requires itself, directly or through others, is an InputError), and
+// valve-pipeline runs it into DIR/<out> before any run of this one, with the same --jobs and
+// --force (--run selects runs of this pipeline only). Its step cache makes a rerun cheap. If
+// it fails, none of this pipeline's runs start (exit 3). Steps read its outputs by path,
+// "${out_dir}/<out>/runs/<its run id>/...". Why: two pipelines that need the same upstream
+// chain share one copy of it, and running the upstream one alone gives the same files.
+//
 // Placeholders: ${name} is a variable's value; ${name.field} (a dot path, array indices as
 // numbers) a field of an object-valued one. A whole object substitutes as its "label" field
 // when it has one, else as compact JSON. Numbers substitute in shortest round-trip form
@@ -90,6 +102,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <utility>
@@ -161,10 +174,20 @@ struct PlotSpec {
   std::string key;      ///< "plots[i]"
 };
 
+struct PipelineSpec;
+
+/// An entry of "requires".
+struct RequiredPipeline {
+  std::string out;                           ///< folder relative to DIR
+  std::shared_ptr<const PipelineSpec> spec;  ///< parsed and checked
+  std::string key;                           ///< "requires[i]"
+};
+
 struct PipelineSpec {
   std::string file;                    ///< as given, for messages
   std::filesystem::path pipeline_dir;  ///< absolute folder of the file
   std::string name, description;
+  std::vector<RequiredPipeline> required;  ///< run before this pipeline's runs, in order
   std::vector<SweepVariable> variables;
   SweepKind sweep = SweepKind::grid;
   std::vector<StepSpec> steps;
@@ -198,6 +221,9 @@ ojson load_pipeline_json(const std::filesystem::path& path);
 /// spec. `file` names the source in messages; `pipeline_dir` is made absolute.
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file,
                             const std::filesystem::path& pipeline_dir);
+/// The same, with the chain of files that led here ("requires"; canonical paths), to reject cycles.
+PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const std::filesystem::path& pipeline_dir,
+                            const std::vector<std::filesystem::path>& required_by);
 
 /// load_pipeline_json + parse_pipeline.
 PipelineSpec load_pipeline(const std::filesystem::path& path);

@@ -259,6 +259,19 @@ void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs
   write_file_atomic(out / "provenance.json", p.dump(2) + "\n");
 }
 
+// The stages, runs and output folders of the pipelines `spec` requires (and they require),
+// so that a missing stage or a file in the way stops everything before the first run.
+void check_required(const PipelineSpec& spec, const fs::path& out, const std::vector<fs::path>& dirs) {
+  for (const auto& r : spec.required) {
+    resolve_stages(*r.spec, dirs);
+    expand_runs(*r.spec, out / r.out);
+    std::error_code ec;
+    if (fs::exists(out / r.out, ec) && !fs::is_directory(out / r.out, ec))
+      throw_input_error(spec.file, r.key + ".out", "a folder", "the file " + (out / r.out).string());
+    check_required(*r.spec, out / r.out, dirs);
+  }
+}
+
 }  // namespace
 
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options) {
@@ -266,6 +279,7 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
   const std::vector<RunPlan> runs = select_runs(expand_runs(spec, options.out_dir), options.only_runs, "--run");
   const fs::path out = normalized_dir(options.out_dir);
+  check_required(spec, out, default_stage_dirs(options.stage_dirs));
 
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec))
@@ -276,26 +290,54 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   summary.parameters() = nlohmann::json(spec.source);
 
   PipelineOutcome result;
-  Progress progress("valve-pipeline", options.quiet);
-  ExecutionOptions exec;
-  exec.jobs = options.jobs;
-  exec.quiet = options.quiet;
-  exec.force = options.force;
-  exec.executable_sha256 = stage_hashes(exes);
-  exec.log = out / "pipeline.log";
-  result.runs = execute_runs(
-      runs, exes, exec, [&](double fraction, const std::string& detail) { progress.update(fraction, detail); });
-  write_provenance(spec, runs, result.runs, exes, exec.executable_sha256, out);
+  nlohmann::json& m = summary.metrics();
+  m["name"] = spec.name;
+  m["jobs"] = options.jobs;
+  m["required"] = nlohmann::json::array();
+  std::string upstream_failure;  // empty while every required pipeline succeeds
+  for (const auto& r : spec.required) {
+    RunnerOptions upstream = options;
+    upstream.out_dir = out / r.out;
+    upstream.only_runs.clear();  // --run names runs of this pipeline
+    const PipelineOutcome done = run_pipeline(*r.spec, upstream);
+    m["required"].push_back({{"pipeline", r.spec->file}, {"out", upstream.out_dir.string()}, {"status", done.status}});
+    if (done.exit_code != 0) {
+      upstream_failure = r.key + " (" + r.spec->file + ", in " + upstream.out_dir.string() + ") failed: " + done.reason;
+      break;
+    }
+  }
 
-  // Aggregates read the tables as just made, in memory: earlier aggregates included.
-  std::map<std::string, CsvTable> tables;
-  for (const auto& csv : gather_csvs(spec)) result.tables.push_back(write_gather_csv(spec, csv, runs, out, &tables[csv]));
-  for (const auto& a : spec.aggregates)
-    result.aggregates.push_back(write_aggregate(a, tables.at(a.from), out, &tables[a.csv]));
-  const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
-  if (!spec.plots.empty() && !gnuplot)
-    std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
-  for (const auto& p : spec.plots) result.plots.push_back(render_plot(spec, p, out, gnuplot));
+  Progress progress("valve-pipeline", options.quiet);
+  if (upstream_failure.empty()) {
+    ExecutionOptions exec;
+    exec.jobs = options.jobs;
+    exec.quiet = options.quiet;
+    exec.force = options.force;
+    exec.executable_sha256 = stage_hashes(exes);
+    exec.log = out / "pipeline.log";
+    result.runs = execute_runs(
+        runs, exes, exec, [&](double fraction, const std::string& detail) { progress.update(fraction, detail); });
+    write_provenance(spec, runs, result.runs, exes, exec.executable_sha256, out);
+
+    // Aggregates read the tables as just made, in memory: earlier aggregates included.
+    std::map<std::string, CsvTable> tables;
+    for (const auto& csv : gather_csvs(spec)) result.tables.push_back(write_gather_csv(spec, csv, runs, out, &tables[csv]));
+    for (const auto& a : spec.aggregates)
+      result.aggregates.push_back(write_aggregate(a, tables.at(a.from), out, &tables[a.csv]));
+    const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
+    if (!spec.plots.empty() && !gnuplot)
+      std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
+    for (const auto& p : spec.plots) result.plots.push_back(render_plot(spec, p, out, gnuplot));
+  } else {
+    // No run starts; tables, plots and provenance are not touched.
+    for (const auto& run : runs) {
+      RunOutcome o;
+      o.run_id = run.run_id;
+      o.variables = run.variables;
+      o.reason = "not started: a required pipeline failed";
+      result.runs.push_back(o);
+    }
+  }
 
   size_t failed_runs = 0, failed_plots = 0;
   for (const auto& r : result.runs) failed_runs += r.ok ? 0 : 1;
@@ -303,7 +345,9 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   progress.finish(std::to_string(runs.size() - failed_runs) + "/" + std::to_string(runs.size()) + " runs ok");
 
   result.status = failed_runs + failed_plots == 0 ? "ok" : "failed";
-  if (failed_runs) {
+  if (!upstream_failure.empty()) {
+    result.reason = upstream_failure + "; no run of this pipeline started";
+  } else if (failed_runs) {
     const RunOutcome& first = *std::find_if(result.runs.begin(), result.runs.end(), [](const RunOutcome& r) { return !r.ok; });
     result.reason = std::to_string(failed_runs) + " of " + std::to_string(runs.size()) + " runs failed (first: " +
                     first.run_id + ", " + first.reason + ")";
@@ -314,9 +358,6 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   }
   result.exit_code = result.status == "ok" ? 0 : 3;
 
-  nlohmann::json& m = summary.metrics();
-  m["name"] = spec.name;
-  m["jobs"] = options.jobs;
   m["runs_total"] = runs.size();
   m["runs_ok"] = runs.size() - failed_runs;
   m["runs_failed"] = failed_runs;

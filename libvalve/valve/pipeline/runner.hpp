@@ -9,6 +9,10 @@
 // succeeded; a plot skipped because gnuplot is absent is not a failure; metrics.csv lists
 // the gather tables, then the aggregate tables, each with its "kind" and row count).
 //
+// Required pipelines ("requires", pipeline_spec.hpp) run first, each by run_pipeline into
+// DIR/<out> with the same jobs and force and all of its runs; if one fails, no run of this
+// pipeline starts and the summary says which (metrics.required lists each with its status).
+//
 // Incremental runs (step_cache.hpp): the leading steps of a run that are up to date are not
 // run again ("cached"); from the first step that is not, every step runs. A run with no
 // cached step starts from an emptied folder (so a gather never picks up a stale summary
