@@ -211,18 +211,7 @@ int main(int argc, char** argv) {
       for (int i = 0; i < mesh.num_nodes(); ++i) gap(i, 0) = coaptation->gap_mm[i], flag(i, 0) = coaptation->coapting[i];
       arrays.push_back({kCoaptationGapArray, gap, false});
       arrays.push_back({kCoaptingArray, flag, false});
-      nlohmann::json per = nlohmann::json::array();
-      for (const auto& l : coaptation->leaflets)
-        per.push_back({{"leaflet", l.leaflet}, {"area_mm2", l.area_mm2}, {"midline_height_mm", l.midline_height_mm},
-                       {"midline_band_top_mm", l.midline_band_top_mm}, {"min_height_mm", l.min_height_mm}, {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
-                       {"free_edge_axis_distance_mm", l.free_edge_axis_distance_mm}, {"closed", l.closed}});
-      summary.metrics()["coaptation"] = {{"closed", coaptation->closed}, {"central_gap", coaptation->central_gap},
-                                         {"min_height_mm", coaptation->min_height_mm},
-                                         {"max_free_edge_axis_distance_mm", coaptation->max_free_edge_axis_distance_mm},
-                                         {"gap", to_string(coaptation_options.gap)},
-                                         {"threshold_mm", coaptation_options.threshold_mm},
-                                         {"free_edge_offset_mm", coaptation_options.free_edge_offset_mm},
-                                         {"commissure_margin", coaptation_options.commissure_margin}, {"leaflets", per}};
+      summary.metrics()["coaptation"] = coaptation_metrics(*coaptation, coaptation_options);
     }
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);

@@ -158,6 +158,24 @@ std::string CoaptationResult::report() const {
   return s.str();
 }
 
+nlohmann::json coaptation_metrics(const CoaptationResult& r, const CoaptationOptions& o) {
+  nlohmann::json per = nlohmann::json::array();
+  for (const auto& l : r.leaflets)
+    per.push_back({{"leaflet", l.leaflet}, {"area_mm2", l.area_mm2}, {"midline_height_mm", l.midline_height_mm},
+                   {"midline_band_top_mm", l.midline_band_top_mm}, {"min_height_mm", l.min_height_mm},
+                   {"coapting_fraction_of_free_edge", l.coapting_fraction_of_free_edge},
+                   {"free_edge_axis_distance_mm", l.free_edge_axis_distance_mm}, {"closed", l.closed}});
+  return {{"closed", r.closed},
+          {"central_gap", r.central_gap},
+          {"min_height_mm", r.min_height_mm},
+          {"max_free_edge_axis_distance_mm", r.max_free_edge_axis_distance_mm},
+          {"gap", to_string(o.gap)},
+          {"threshold_mm", o.threshold_mm},
+          {"free_edge_offset_mm", o.free_edge_offset_mm},
+          {"commissure_margin", o.commissure_margin},
+          {"leaflets", per}};
+}
+
 CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const CoaptationOptions& opt) {
   opt.validate();
   const int n = m.num_nodes();

@@ -63,6 +63,7 @@
 // at the commissures the strip shrinks to nothing by anatomy, not because of a bad
 // closure, so the ends are excluded. A leaflet is closed when that minimum is > 0, i.e.
 // its coaptation strip is continuous along the free edge between the margins.
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
@@ -140,6 +141,10 @@ struct CoaptationResult {
   /// free edge's distance from the axis when there is one.
   std::string report() const;
 };
+
+/// The summary block valve-simulate and valve-coaptation write (metrics.coaptation): the
+/// verdicts, per leaflet area, heights, free-edge reach, and the options used.
+nlohmann::json coaptation_metrics(const CoaptationResult& result, const CoaptationOptions& options);
 
 /// Coaptation of the deformed valve `x` (3N, node-major, mm). Throws InputError when x does
 /// not have 3N finite entries, per-node or per-triangle arrays have the wrong size, a leaflet
