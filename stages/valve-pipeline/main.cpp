@@ -50,6 +50,7 @@ std::vector<fs::path> stage_dirs(const CommandLine& cl) {
 // Without --out the dry run shows paths under a stand-in folder, printed as $OUT.
 int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
   const auto exes = resolve_stages(spec, stage_dirs(cl));
+  resolve_required_stages(spec, stage_dirs(cl));
   const std::string marker = "/__valve_pipeline_out__";
   const fs::path out = cl.get("out") ? fs::path(*cl.get("out")) : fs::path(marker);
   const auto runs = expand_runs(spec, out);

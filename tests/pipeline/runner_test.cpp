@@ -278,6 +278,10 @@ TEST_CASE("runner: required pipelines run first, cached like any other, and a fa
   const ojson summary = ojson::parse(read_text(tmp.path() / "out/pipeline.summary.json"));
   CHECK(summary["metrics"]["required"][0]["status"] == "ok");
   CHECK(ojson::parse(read_text(tmp.path() / "out/upstream/pipeline.summary.json"))["status"] == "ok");
+  const ojson provenance = ojson::parse(read_text(tmp.path() / "out/provenance.json"));
+  CHECK_THAT(provenance["required"][0]["file"].get<std::string>(), Catch::EndsWith("up.json"));
+  CHECK(provenance["required"][0]["sha256"].get<std::string>().size() == 64);
+  CHECK_THAT(provenance["required"][0]["out"].get<std::string>(), Catch::EndsWith("out/upstream"));
 
   // Again: the upstream steps are cached.
   const PipelineOutcome second = run_pipeline(spec, options);

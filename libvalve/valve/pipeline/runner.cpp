@@ -225,6 +225,13 @@ std::vector<std::string> stage_hashes(const std::vector<fs::path>& executables) 
   return hashes;
 }
 
+void resolve_required_stages(const PipelineSpec& spec, const std::vector<fs::path>& dirs) {
+  for (const auto& r : spec.required) {
+    resolve_stages(*r.spec, dirs);
+    resolve_required_stages(*r.spec, dirs);
+  }
+}
+
 namespace {
 
 void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs, const std::vector<RunOutcome>& outcomes,
@@ -237,6 +244,13 @@ void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs
                       {"runs", nlohmann::json::array()}};
   std::error_code ec;
   if (fs::is_regular_file(spec.file, ec)) p["pipeline"]["sha256"] = sha256_file(spec.file);
+  // The required pipelines' own provenance lies in their folders; here, which file ran where.
+  p["required"] = nlohmann::json::array();
+  for (const auto& r : spec.required) {
+    nlohmann::json jr = {{"file", fs::absolute(r.spec->file).string()}, {"out", (out / r.out).string()}};
+    if (fs::is_regular_file(r.spec->file, ec)) jr["sha256"] = sha256_file(r.spec->file);
+    p["required"].push_back(jr);
+  }
   for (size_t i = 0; i < spec.steps.size(); ++i)
     p["stages"].push_back({{"step", spec.steps[i].name}, {"stage", spec.steps[i].stage},
                            {"executable", executables[i].string()}, {"sha256", hashes[i]}});
@@ -259,16 +273,15 @@ void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs
   write_file_atomic(out / "provenance.json", p.dump(2) + "\n");
 }
 
-// The stages, runs and output folders of the pipelines `spec` requires (and they require),
-// so that a missing stage or a file in the way stops everything before the first run.
-void check_required(const PipelineSpec& spec, const fs::path& out, const std::vector<fs::path>& dirs) {
+// The runs and output folders of the pipelines `spec` requires (and they require), so that
+// a file in the way stops everything before the first run.
+void check_required_folders(const PipelineSpec& spec, const fs::path& out) {
   for (const auto& r : spec.required) {
-    resolve_stages(*r.spec, dirs);
     expand_runs(*r.spec, out / r.out);
     std::error_code ec;
     if (fs::exists(out / r.out, ec) && !fs::is_directory(out / r.out, ec))
       throw_input_error(spec.file, r.key + ".out", "a folder", "the file " + (out / r.out).string());
-    check_required(*r.spec, out / r.out, dirs);
+    check_required_folders(*r.spec, out / r.out);
   }
 }
 
@@ -279,7 +292,8 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   const auto exes = resolve_stages(spec, default_stage_dirs(options.stage_dirs));
   const std::vector<RunPlan> runs = select_runs(expand_runs(spec, options.out_dir), options.only_runs, "--run");
   const fs::path out = normalized_dir(options.out_dir);
-  check_required(spec, out, default_stage_dirs(options.stage_dirs));
+  resolve_required_stages(spec, default_stage_dirs(options.stage_dirs));
+  check_required_folders(spec, out);
 
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec))

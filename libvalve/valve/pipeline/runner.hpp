@@ -68,6 +68,10 @@ struct RunOutcome {
 std::vector<std::filesystem::path> resolve_stages(const PipelineSpec& spec,
                                                   const std::vector<std::filesystem::path>& dirs);
 
+/// The same for every pipeline `spec` requires, directly or not (nothing is returned: a
+/// missing stage is the InputError).
+void resolve_required_stages(const PipelineSpec& spec, const std::vector<std::filesystem::path>& dirs);
+
 /// Called after every finished step with the fraction of work done (finished runs plus the
 /// finished steps of running ones, over all runs) and a one-line description.
 using RunProgress = std::function<void(double fraction, const std::string& detail)>;
