@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
     if (axis_point.has_value() != axis_direction.has_value())
       throw InputError("valve-coaptation: --axis-point/--axis-direction: expected both or neither, found only --" +
                        std::string(axis_point ? "axis-point" : "axis-direction"));
+    if (axis_direction && !(axis_direction->norm() > 0))
+      throw InputError("valve-coaptation: --axis-direction: expected a non-zero x,y,z, found 0,0,0");
     if (axis_direction) options.axis = ValveAxis{*axis_point, *axis_direction};
     options.validate();
 
@@ -64,6 +66,7 @@ int main(int argc, char** argv) {
     if (leaflets.size() < 2)
       throw_input_error(file.string(), "Leaflet", "a mesh of at least two leaflets", std::to_string(leaflets.size()) + " leaflet id(s)");
     const MatX3 closed = mesh.points;
+    if (!closed.allFinite()) throw_input_error(file.string(), "points", "finite coordinates", "NaN or inf");
     for (const auto& a : extra)
       if (a.name == "Displacement" && !a.per_cell && a.values.rows() == mesh.num_nodes() && a.values.cols() == 3)
         mesh.points = closed - a.values;
