@@ -45,21 +45,24 @@ struct HitDistance {
   double operator()(const Segment& s) const { return std::min((*this)(s.source()), (*this)(s.target())); }
 };
 
-// The gap queries, with the CGAL state kept out of the header: one tree over every
-// triangle for the rays (which skip their own leaflet's hits) and one per leaflet for the
-// nearest points (CGAL's closest-point query has no skip).
+// The gap queries, with the CGAL state kept out of the header. Only the trees `measure`
+// needs are built: for rays one tree over every triangle (the rays skip their own
+// leaflet's hits), for nearest points one per leaflet (CGAL's closest-point query has no skip).
 class LeafletSurfaces {
  public:
   LeafletSurfaces(const LeafletSurfaces&) = delete;  // the trees point into the triangle vectors
   LeafletSurfaces& operator=(const LeafletSurfaces&) = delete;
-  LeafletSurfaces(const TriMesh& m, const std::vector<int>& tri_leaflet, const VecX& x) {
+  LeafletSurfaces(const TriMesh& m, const std::vector<int>& tri_leaflet, const VecX& x, GapMeasure measure) {
     for (int t = 0; t < m.num_triangles(); ++t) {
       const Tri& tri = m.triangles[t];
       K::Triangle_3 T(to_point(node3(x, tri[0])), to_point(node3(x, tri[1])), to_point(node3(x, tri[2])));
       if (T.is_degenerate()) continue;  // no area to hit; CGAL's intersection requires a proper triangle
-      triangles_.push_back(T);
-      leaflet_.push_back(tri_leaflet[t]);
-      per_leaflet_[tri_leaflet[t]].triangles.push_back(T);
+      if (measure == GapMeasure::nearest) {
+        per_leaflet_[tri_leaflet[t]].triangles.push_back(T);
+      } else {
+        triangles_.push_back(T);
+        leaflet_.push_back(tri_leaflet[t]);
+      }
     }
     tree_.insert(triangles_.begin(), triangles_.end());
     tree_.build();
@@ -215,7 +218,7 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
   r.gap_mm.assign(n, kCoaptationNoHit);
   r.coapting.assign(n, 0);
   std::vector<char> shared(n, 0);
-  const LeafletSurfaces surfaces(m, tri_leaflet, x);
+  const LeafletSurfaces surfaces(m, tri_leaflet, x, opt.gap);
   for (int i = 0; i < n; ++i) {
     double gap = kInf;
     if (node_leaflets[i].size() > 1) {

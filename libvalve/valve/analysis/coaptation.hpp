@@ -15,9 +15,9 @@
 //   25°, mesh seed 1) 17 of the 33 free-edge nodes lie 0.23-0.40 mm from another leaflet
 //   (penalty contact holds them 0.25 mm apart) while their rays hit nothing (13) or land
 //   more than 0.5 mm away (4), and the ray measure finds 8-50 % of each free edge coapting
-//   where the nearest measure finds 83-100 %. The leaflets
-//   are sheets of the threshold's thickness (0.5 mm) drawn as their mid-surfaces, so mid-
-//   surfaces nearer than that touch, at whatever angle they meet. The price: the coapting
+//   where the nearest measure finds 83-100 %. The leaflets are sheets of the threshold's
+//   thickness (0.5 mm) drawn as their mid-surfaces, so mid-surfaces nearer than that touch,
+//   at whatever angle they meet. The price: the coapting
 //   region extends past a neighbour's border by sqrt(threshold² − gap²) (0.43 mm at the
 //   contact's 0.25 mm), which adds a rim to the area.
 // A node shared by two leaflets (commissure corner) is in contact by construction: gap 0,
@@ -98,8 +98,8 @@ struct CoaptationOptions {
 };
 
 /// Value of gap_mm for a node whose rays hit no other leaflet, or (nearest) for a mesh with
-/// no other leaflet, and for nodes without triangles. A negative sentinel, never inf or NaN, so that it can be written to files
-/// and told apart from every real distance.
+/// no other leaflet, and for nodes without triangles. A negative sentinel, never inf or NaN,
+/// so that it can be written to files and told apart from every real distance.
 constexpr double kCoaptationNoHit = -1.0;
 
 /// Point-array names under which a stage writes CoaptationResult::gap_mm and ::coapting.

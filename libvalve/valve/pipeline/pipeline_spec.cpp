@@ -467,6 +467,9 @@ PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const st
 void parse_required(const ojson& list, const std::string& file, const std::vector<fs::path>& required_by,
                     PipelineSpec& spec) {
   if (!list.is_array()) fail(file, "requires", "a list of {pipeline, out}", describe(list));
+  std::vector<std::string> own_files = gather_csvs(spec);
+  for (const auto& a : spec.aggregates) own_files.push_back(a.csv);
+  for (const auto& p : spec.plots) own_files.push_back(p.png);
   for (size_t i = 0; i < list.size(); ++i) {
     RequiredPipeline required;
     required.key = "requires[" + std::to_string(i) + "]";
@@ -478,7 +481,7 @@ void parse_required(const ojson& list, const std::string& file, const std::vecto
       // A folder of its own: not DIR itself, not outside it, not a name the runner writes.
       const std::string text = required_string(e, "out", file, required.key);
       const fs::path p = fs::path(text).lexically_normal();
-      bool bad = p.is_absolute() || p.empty() || p == "." || p == "./";
+      bool bad = p.is_absolute() || p.empty() || p == ".";  // lexically_normal makes "./" and "a/.." "."
       for (const auto& part : p) bad = bad || part == "..";
       const std::string head = p.empty() ? "" : p.begin()->string();
       bad = bad || head == "runs" || head == "pipeline.summary.json" || head == "pipeline.log" || head == "provenance.json";
@@ -489,14 +492,12 @@ void parse_required(const ojson& list, const std::string& file, const std::vecto
     }
     const auto shadows = [&](const std::string& name) {
       const fs::path a = fs::path(name).lexically_normal(), b = fs::path(required.out);
-      return a == b || std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end() ||
+      // One is the other or lies inside it.
+      return std::mismatch(b.begin(), b.end(), a.begin(), a.end()).first == b.end() ||
              std::mismatch(a.begin(), a.end(), b.begin(), b.end()).first == a.end();
     };
     for (const auto& earlier : spec.required)
       if (shadows(earlier.out)) fail(file, out_key, "a folder apart from the other required pipelines'", "\"" + required.out + "\" (also " + earlier.key + ")");
-    std::vector<std::string> own_files = gather_csvs(spec);
-    for (const auto& a : spec.aggregates) own_files.push_back(a.csv);
-    for (const auto& p : spec.plots) own_files.push_back(p.png);
     for (const auto& f : own_files)
       if (shadows(f)) fail(file, out_key, "a folder apart from this pipeline's tables and plots", "\"" + required.out + "\" (and " + f + ")");
 
