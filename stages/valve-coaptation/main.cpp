@@ -1,5 +1,5 @@
 // valve-coaptation CLOSED.vtp --out DIR [--gap ray|nearest] [--threshold MM]
-//                  [--free-edge-offset MM] [--commissure-margin F]
+//                  [--free-edge-offset MM] [--commissure-margin F] [--closed-min-height MM]
 //                  [--axis-point X,Y,Z --axis-direction X,Y,Z] [--config FILE.json] [--quiet]
 // Measures the coaptation of a closed valve of several leaflets (seed 4.2.5) again, without
 // simulating it again: another gap measure or threshold on a closure that took minutes, or a
@@ -8,21 +8,25 @@
 //     of another leaflet; see "How coaptation is measured" in the README);
 //   --threshold 0.5 (mm; a node coapts when its gap is at most this), --free-edge-offset 3
 //     (mm; how far below a free edge a band may begin), --commissure-margin 0.1 (fraction of
-//     each free edge left out of the minimum height at both ends);
+//     each free edge left out of the minimum height at both ends), --closed-min-height 0.5
+//     (mm; a leaflet is closed when its minimum height is at least this);
 //   --axis-point / --axis-direction: the valve's axis (the aortic root's: 0,0,0 and 0,0,1 for
 //     valve-generate aortic_valve); with it, each free edge's distance from the axis.
 // CLOSED.vtp needs the Leaflet and BoundaryType arrays (valve-simulate's closed.sim.vtp has
 // them). Its points are the closed shape; the rest shape, which sets the commissure margins
 // along each free edge, is points minus its Displacement array, or the points themselves
 // when it has none.
-// Writes DIR/coaptation.vtp (CLOSED.vtp's mesh with CoaptationGap_mm and Coapting) and
-// DIR/coaptation.summary.json (metrics.coaptation as valve-simulate writes it).
+// Writes DIR/coaptation.vtp (CLOSED.vtp's mesh with CoaptationGap_mm and Coapting),
+// DIR/coaptation_columns.csv (per leaflet the band height down each sampled column of the
+// free edge: leaflet,arc_mm,height_mm,band_top_mm) and DIR/coaptation.summary.json
+// (metrics.coaptation as valve-simulate writes it).
 // Exit 0 ok, 2 bad input (one leaflet only, a bad flag; nothing written).
 #include <cstdio>
 #include <filesystem>
 #include <set>
 
 #include "valve/analysis/coaptation.hpp"
+#include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/stage_arguments.hpp"
@@ -34,10 +38,10 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   return run_stage("valve-coaptation", kStageUsage, [&] {
-    const std::vector<std::string> keys = {"gap", "threshold", "free_edge_offset", "commissure_margin", "axis_point",
-                                           "axis_direction"};
-    CommandLine cl(argc, argv, {"out", "config", "gap", "threshold", "free-edge-offset", "commissure-margin", "axis-point",
-                                "axis-direction"},
+    const std::vector<std::string> keys = {"gap", "threshold", "free_edge_offset", "commissure_margin",
+                                           "closed_min_height", "axis_point", "axis_direction"};
+    CommandLine cl(argc, argv, {"out", "config", "gap", "threshold", "free-edge-offset", "commissure-margin",
+                                "closed-min-height", "axis-point", "axis-direction"},
                    {"quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-coaptation: expected one CLOSED.vtp, found " + std::to_string(cl.positional().size()) +
@@ -51,6 +55,7 @@ int main(int argc, char** argv) {
     options.threshold_mm = args.length_mm("threshold", options.threshold_mm, 1e-6, 100);
     options.free_edge_offset_mm = args.length_mm("free-edge-offset", options.free_edge_offset_mm, 0, 1e3);
     options.commissure_margin = args.number("commissure-margin", options.commissure_margin, 0, 0.499);
+    options.closed_min_height_mm = args.length_mm("closed-min-height", options.closed_min_height_mm, 1e-6, 1e3);
     const auto axis_point = args.vector3("axis-point"), axis_direction = args.vector3("axis-direction");
     if (axis_point.has_value() != axis_direction.has_value())
       throw InputError("valve-coaptation: --axis-point/--axis-direction: expected both or neither, found only --" +
@@ -79,6 +84,7 @@ int main(int argc, char** argv) {
     summary.parameters() = args.used();
     summary.metrics()["coaptation"] = coaptation_metrics(result, options);
     write_mesh(out / "coaptation.vtp", mesh, &closed, {{kCoaptationGapArray, gap, false}, {kCoaptingArray, flag, false}});
+    write_file_atomic(out / "coaptation_columns.csv", coaptation_columns_csv(result));
     summary.write();
     if (!cl.has("quiet")) std::printf("valve-coaptation: %s\n", result.report().c_str());
     return 0;

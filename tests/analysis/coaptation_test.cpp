@@ -10,7 +10,9 @@
 // overlap border lies half a cell (0.25 mm) from the nodes of the sheet that casts the rays.
 #include <catch2/catch.hpp>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "valve/analysis/coaptation.hpp"
 #include "valve/core/error.hpp"
@@ -75,6 +77,20 @@ void rigid_motion(TriMesh& m, const Mat3& R, const Vec3& t) {
   for (int i = 0; i < m.num_nodes(); ++i) m.points.row(i) = (R * m.points.row(i).transpose() + t).transpose();
 }
 
+// h of every sampled column of `l` whose rest arc length lies in [from, to] (mm). The lower
+// sheet's free edge runs from x = 10 to x = 0 (arc length 10 - x); the ranges below are
+// symmetric and keep to whole cells, where the interpolant's border is the grid row's.
+void check_columns(const LeafletCoaptation& l, double from, double to, double height) {
+  int checked = 0;
+  for (std::size_t k = 0; k < l.column_arc_mm.size(); ++k)
+    if (l.column_arc_mm[k] >= from && l.column_arc_mm[k] <= to) {
+      INFO("column at " << l.column_arc_mm[k] << " mm");
+      CHECK(l.column_height_mm[k] == Approx(height).margin(1e-9));
+      ++checked;
+    }
+  CHECK(checked > 0);
+}
+
 // Expected numbers for the pair at separation 0.3 mm, derived from the geometry.
 void check_overlap_pair(const CoaptationResult& r) {
   REQUIRE(r.leaflets.size() == 2);
@@ -105,20 +121,23 @@ void check_overlap_pair(const CoaptationResult& r) {
   const double upper_depth = 3.0 + std::hypot(0.25, kLip);
   CHECK(l1.area_mm2 == Approx(9.5 * upper_depth).epsilon(1e-9));
 
-  // Heights along grid columns: lower sheet, lip row sqrt(0.5² + 0.05²) plus 5 rows of 0.5
-  // down to y = 7 (the deepest row inside the 3.25 mm overlap); upper sheet, its full depth.
-  const double lower_height = 2.5 + std::hypot(0.5, kLip);
-  CHECK(std::abs(lower_height - 3.25) < 0.5);  // within one cell of the overlap depth
+  // Heights down the columns (x = const): lower sheet, the lip row sqrt(0.5² + 0.05²), then
+  // down to y = 6.75, where the indicator passes 0.5 between the coapting row y = 7 and the
+  // row y = 6.5 (the overlap's own border); upper sheet, its full depth. The lower sheet's
+  // columns within 0.25 mm of its sides begin where the indicator, between a corner (0) and
+  // the next free-edge node (1), is below 0.5: no band. (Between 0.25 and 0.5 mm from a side
+  // the band's lower end depends on which way the cells' diagonals run.)
+  const double lower_height = 2.75 + std::hypot(0.5, kLip);
   REQUIRE(l0.free_edge.size() == 21);
   REQUIRE(l1.free_edge.size() == 20);
-  for (size_t k = 0; k < 21; ++k) {
-    INFO("lower free-edge node " << k);
-    CHECK(l0.height_mm[k] == Approx(k == 0 || k == 20 ? 0.0 : lower_height).margin(1e-9));
-  }
-  for (size_t k = 0; k < 20; ++k) CHECK(l1.height_mm[k] == Approx(upper_depth).margin(1e-9));
+  REQUIRE(l0.column_arc_mm.size() == l0.column_height_mm.size());
+  check_columns(l0, 0.5, 9.5, lower_height);
+  check_columns(l0, 0, 0.24, 0.0);
+  check_columns(l0, 9.76, 10, 0.0);
+  check_columns(l1, 0, 9.5, upper_depth);
   CHECK(l0.middle_node == lower(10, 20));
   CHECK(l0.midline_height_mm == Approx(lower_height).margin(1e-9));
-  CHECK(l0.min_height_mm == Approx(lower_height).margin(1e-9));  // corners lie in the 1 mm margins
+  CHECK(l0.min_height_mm == Approx(lower_height).margin(1e-9));  // the corners lie in the 1 mm margins
   CHECK(l1.midline_height_mm == Approx(upper_depth).margin(1e-9));
   CHECK(l1.min_height_mm == Approx(upper_depth).margin(1e-9));
   CHECK(r.min_height_mm == Approx(std::min(lower_height, upper_depth)).margin(1e-9));  // the valve's: the lesser
@@ -138,6 +157,12 @@ TEST_CASE("coaptation: sheets 0.3 mm apart coapt over their overlap", "[analysis
   check_overlap_pair(r);
   for (double g : r.gap_mm) CHECK(std::isfinite(g));
   CHECK_FALSE(r.report().empty());
+  // One CSV row per sampled column; the midline column of leaflet 0 (arc 5 mm) among them.
+  const std::string csv = coaptation_columns_csv(r);
+  CHECK(csv.rfind("leaflet,arc_mm,height_mm,band_top_mm\n", 0) == 0);
+  CHECK(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) ==
+        1 + r.leaflets[0].column_arc_mm.size() + r.leaflets[1].column_arc_mm.size());
+  CHECK(csv.find("\n0,5,3.252493781,0\n") != std::string::npos);
 }
 
 TEST_CASE("coaptation: same numbers after a rigid motion", "[analysis][coaptation]") {
@@ -191,13 +216,17 @@ TEST_CASE("coaptation: a neighbour too narrow leaves a central gap", "[analysis]
   const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
   REQUIRE(r.leaflets.size() == 3);
   const LeafletCoaptation& l0 = r.leaflets[0];
-  const double lower_height = 2.5 + std::hypot(0.5, kLip);
+  const double lower_height = 2.75 + std::hypot(0.5, kLip);
   for (int i = 0; i <= 20; ++i) {
     const bool covered = (i >= 1 && i <= 7) || (i >= 13 && i <= 19);
     INFO("free-edge node " << i);
     CHECK(r.coapting[lower(i, 20)] == (covered ? 1 : 0));
-    CHECK(l0.height_mm[i] == Approx(covered ? lower_height : 0.0).margin(1e-9));
   }
+  // Full bands over the covered cells (x in [0.5, 3.5] and [6.5, 9.5]), none over the bare
+  // ones (x in [4, 6]).
+  check_columns(l0, 0.5, 3.5, lower_height);
+  check_columns(l0, 4.0, 6.0, 0.0);
+  check_columns(l0, 6.5, 9.5, lower_height);
   CHECK(l0.midline_height_mm == 0);
   CHECK(l0.min_height_mm == 0);
   CHECK(l0.coapting_fraction_of_free_edge == Approx(0.6));  // [0.5, 3.5] and [6.5, 9.5]
@@ -223,8 +252,8 @@ TEST_CASE("coaptation: contact not connected to the free edge adds area but no h
   }
   const LeafletCoaptation& l0 = r.leaflets[0];
   // Heights as without the patch (its nodes are 6.5-8.5 mm from the free edge).
-  CHECK(l0.min_height_mm == Approx(2.5 + std::hypot(0.5, kLip)).margin(1e-9));
-  CHECK(l0.midline_height_mm == Approx(2.5 + std::hypot(0.5, kLip)).margin(1e-9));
+  CHECK(l0.min_height_mm == Approx(2.75 + std::hypot(0.5, kLip)).margin(1e-9));
+  CHECK(l0.midline_height_mm == Approx(2.75 + std::hypot(0.5, kLip)).margin(1e-9));
   // Area: both overlaps; six corner cells off by at most h²/12 each plus the lip tilt.
   CHECK(l0.area_mm2 == Approx(9.5 * 3.25 + 9.5 * 2.5).margin(0.15));
   CHECK(r.closed);
@@ -232,13 +261,14 @@ TEST_CASE("coaptation: contact not connected to the free edge adds area but no h
 
 TEST_CASE("coaptation: a band that begins below a free edge that does not touch", "[analysis][coaptation]") {
   // The upper sheet ends at y = 9.25, so the lower sheet coapts on rows y = 7..9 only: its
-  // free edge (y = 10) and the row y = 9.5 do not touch. Down a column the band begins at
-  // d = hypot(0.5, lip) + 0.5 (row y = 9) and ends 4 rows lower (y = 7): height 2 mm.
+  // free edge (y = 10) and the row y = 9.5 do not touch. Down a column the indicator passes
+  // 0.5 at y = 9.25, hypot(0.5, lip) + 0.25 below the free edge, and again at y = 6.75:
+  // height 2.5 mm.
   TriMesh m;
   add_sheet(m, lower_sheet());
   add_sheet(m, {0.25, 9.75, 6.75, 9.25, 19, 10, 0.3, -kLip, 1, false});
   m.fill_defaults();
-  const double top = std::hypot(0.5, kLip) + 0.5;
+  const double top = std::hypot(0.5, kLip) + 0.25;
   const CoaptationResult r = analyze_coaptation(m, flatten(m.points));
   for (int i = 1; i <= 19; ++i) {
     INFO("column " << i);
@@ -248,21 +278,28 @@ TEST_CASE("coaptation: a band that begins below a free edge that does not touch"
     CHECK(r.coapting[lower(i, 20)] == 0);
   }
   const LeafletCoaptation& l0 = r.leaflets[0];
-  for (int k = 1; k <= 19; ++k) {
-    INFO("free-edge node " << k);
-    CHECK(l0.band_top_mm[k] == Approx(top).margin(1e-9));
-    CHECK(l0.height_mm[k] == Approx(2.0).margin(1e-9));
+  for (std::size_t k = 0; k < l0.column_arc_mm.size(); ++k) {
+    const double s = l0.column_arc_mm[k];
+    INFO("column at " << s << " mm");
+    if ((s >= 0.25 && s < 0.5) || (s > 9.5 && s <= 9.75)) continue;  // cells beside the sides
+    const bool covered = s >= 0.5 && s <= 9.5;
+    CHECK(l0.column_band_top_mm[k] == (covered ? Approx(top).margin(1e-9) : Approx(-1)));
+    CHECK(l0.column_height_mm[k] == Approx(covered ? 2.5 : 0.0).margin(1e-9));
   }
-  CHECK(l0.height_mm[0] == 0);
-  CHECK(l0.band_top_mm[0] == -1);
-  CHECK(l0.midline_height_mm == Approx(2.0).margin(1e-9));
+  CHECK(l0.midline_height_mm == Approx(2.5).margin(1e-9));
   CHECK(l0.midline_band_top_mm == Approx(top).margin(1e-9));
-  CHECK(l0.min_height_mm == Approx(2.0).margin(1e-9));
+  CHECK(l0.min_height_mm == Approx(2.5).margin(1e-9));
   CHECK(l0.closed);
   CHECK(r.central_gap);  // the free edge itself does not touch
+  // Closed needs a band at least closed_min_height_mm tall everywhere between the margins.
+  CoaptationOptions tall;
+  tall.closed_min_height_mm = 2.49;
+  CHECK(analyze_coaptation(m, flatten(m.points), tall).leaflets[0].closed);
+  tall.closed_min_height_mm = 2.51;
+  CHECK_FALSE(analyze_coaptation(m, flatten(m.points), tall).leaflets[0].closed);
   // A band beginning deeper than the offset is not coaptation from the free edge.
   CoaptationOptions o;
-  o.free_edge_offset_mm = 0.9;
+  o.free_edge_offset_mm = 0.7;
   const CoaptationResult deep = analyze_coaptation(m, flatten(m.points), o);
   CHECK(deep.leaflets[0].min_height_mm == 0);
   CHECK(deep.leaflets[0].midline_band_top_mm == -1);
@@ -285,8 +322,9 @@ TEST_CASE("coaptation: free edges side by side at different heights (ray against
   CHECK(ray.gap_mm[lower(10, 20)] == kCoaptationNoHit);
   CHECK(ray.gap_mm[lower(10, 16)] == Approx(0.25).margin(1e-9));
   CHECK(ray.leaflets[0].coapting_fraction_of_free_edge == 0);
-  // Band from row y = 9.5 (0.5 mm below the free edge) down to y = 6: 3.5 mm.
-  CHECK(ray.leaflets[0].min_height_mm == Approx(3.5).margin(1e-9));
+  // Band from y = 9.75 (half way to the coapting row y = 9.5) down to y = 5.75 (half way
+  // from the row y = 6 to the bare row y = 5.5): 4 mm.
+  CHECK(ray.leaflets[0].min_height_mm == Approx(4.0).margin(1e-9));
   CHECK(ray.central_gap);
 
   CoaptationOptions o;
@@ -307,7 +345,7 @@ TEST_CASE("coaptation: free edges side by side at different heights (ray against
   CHECK(ray.coapting[lower(0, 16)] == 0);
   // Corners (x = 0, 10) are also within the threshold of leaflet 1's free-edge corners.
   CHECK(near.leaflets[0].coapting_fraction_of_free_edge == Approx(1.0));
-  CHECK(near.leaflets[0].min_height_mm == Approx(4.0).margin(1e-9));  // y = 10 down to y = 6
+  CHECK(near.leaflets[0].min_height_mm == Approx(4.25).margin(1e-9));  // y = 10 down to y = 5.75
   CHECK_FALSE(near.central_gap);
   // Leaflet 1 lies wholly over leaflet 0: every node 0.25 mm from it either way.
   for (int v = upper(0, 0); v < m.num_nodes(); ++v) CHECK(near.gap_mm[v] == Approx(0.25).margin(1e-9));
@@ -327,9 +365,9 @@ TEST_CASE("coaptation: the commissure margin excludes the free-edge ends", "[ana
   CHECK(r.leaflets[0].min_height_mm == 0);
   CHECK_FALSE(r.leaflets[0].closed);
   CHECK(r.leaflets[1].min_height_mm == Approx(3.0 + std::hypot(0.25, kLip)).margin(1e-9));
-  o.commissure_margin = 0.049;  // 0.49 mm: excludes x = 0 but keeps x = 0.5
+  o.commissure_margin = 0.05;  // 0.5 mm: the columns over whole covered cells only
   CHECK(analyze_coaptation(m, flatten(m.points), o).leaflets[0].min_height_mm ==
-        Approx(2.5 + std::hypot(0.5, kLip)).margin(1e-9));
+        Approx(2.75 + std::hypot(0.5, kLip)).margin(1e-9));
 }
 
 TEST_CASE("coaptation: a node shared by two leaflets has gap 0 and no height", "[analysis][coaptation]") {
@@ -348,7 +386,8 @@ TEST_CASE("coaptation: a node shared by two leaflets has gap 0 and no height", "
   CHECK(r.coapting == std::vector<int>{1, 0, 0, 0, 0});
   // One coapting node of three: a third of the triangle's area (0.5 mm²).
   CHECK(r.leaflets[0].area_mm2 == Approx(0.5 / 3));
-  for (double h : r.leaflets[0].height_mm) CHECK(h == 0);
+  REQUIRE_FALSE(r.leaflets[0].column_height_mm.empty());
+  for (double h : r.leaflets[0].column_height_mm) CHECK(h == 0);
   CHECK_FALSE(r.closed);
 }
 
@@ -394,6 +433,11 @@ TEST_CASE("coaptation: invalid options and inputs throw InputError", "[analysis]
   for (double margin : {-0.01, 0.5, 0.7, nan}) {
     CoaptationOptions o;
     o.commissure_margin = margin;
+    CHECK_THROWS_AS(o.validate(), InputError);
+  }
+  for (double height : {0.0, -1.0, nan, HUGE_VAL}) {
+    CoaptationOptions o;
+    o.closed_min_height_mm = height;
     CHECK_THROWS_AS(o.validate(), InputError);
   }
   for (double offset : {-0.1, nan, HUGE_VAL}) {

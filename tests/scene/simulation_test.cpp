@@ -116,7 +116,7 @@ TEST_CASE("leaflet_materials: one material group per triangle, clear errors othe
   CHECK_THROWS_WITH(build_system(absent, mesh), Catch::Contains("leaflet_materials[0].leaflets"));
 }
 
-TEST_CASE("coaptation block: gap measure, threshold and offset, with file/key errors", "[scene]") {
+TEST_CASE("coaptation block: gap measure, threshold, offset and closed height, with file/key errors", "[scene]") {
   auto scene = [](const json& coaptation) {
     return parse_scene({{"mesh", "unused.vtp"}, {"model", "mass_spring"}, {"material", "aortic_leaflet"}, {"coaptation", coaptation}},
                        "s.json", ".");
@@ -124,15 +124,18 @@ TEST_CASE("coaptation block: gap measure, threshold and offset, with file/key er
   const SceneConfig plain = parse_scene({{"mesh", "unused.vtp"}, {"model", "mass_spring"}, {"material", "aortic_leaflet"}}, "s.json", ".");
   CHECK(plain.coaptation.gap == GapMeasure::ray);  // the seed's measure unless a scene asks otherwise
   CHECK(plain.coaptation.threshold_mm == 0.5);
-  const SceneConfig sc = scene({{"gap", "nearest"}, {"threshold", "0.04 cm"}, {"free_edge_offset", "2 mm"}});
+  CHECK(plain.coaptation.closed_min_height_mm == 0.5);
+  const SceneConfig sc = scene({{"gap", "nearest"}, {"threshold", "0.04 cm"}, {"free_edge_offset", "2 mm"}, {"closed_min_height", "1 mm"}});
   CHECK(sc.coaptation.gap == GapMeasure::nearest);
   CHECK(sc.coaptation.threshold_mm == Approx(0.4));
   CHECK(sc.coaptation.free_edge_offset_mm == Approx(2.0));
   CHECK(sc.coaptation.commissure_margin == 0.1);
+  CHECK(sc.coaptation.closed_min_height_mm == Approx(1.0));
   CHECK_THROWS_WITH(scene({{"gap", "closest"}}), Catch::Contains("s.json") && Catch::Contains("coaptation.gap") &&
                                                    Catch::Contains("nearest") && Catch::Contains("closest"));
   CHECK_THROWS_WITH(scene({{"threshold", "-1 mm"}}), Catch::Contains("coaptation.threshold"));
   CHECK_THROWS_WITH(scene({{"gaps", "ray"}}), Catch::Contains("coaptation.gaps"));
+  CHECK_THROWS_WITH(scene({{"closed_min_height", "0 mm"}}), Catch::Contains("coaptation.closed_min_height"));
 }
 
 namespace {

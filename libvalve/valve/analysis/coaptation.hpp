@@ -33,36 +33,44 @@
 // row of triangles along the whole contact border; the interpolant places the border, on
 // average, half way between a coapting and a non-coapting node.
 //
-// Heights. d(v) = graph-geodesic distance from v to the nearest free-edge node of its
-// leaflet (multi-source Dijkstra over deformed edge lengths of the leaflet's own edges),
-// src(v) = that free-edge node. The column of f is { v : src(v) = f }. The band of f is
-// the coapting component (connected through coapting nodes) of the coapting node of f's
-// column nearest the free edge, provided that node lies within free_edge_offset_mm of it:
-//   top(f) = min { d(v) : v coapting, src(v) = f }          (band only if top(f) ≤ offset)
-//   h(f)   = max { d(v) : src(v) = f, v in the band } − top(f)
-// (0 without a band). Where f itself coapts, top(f) = 0 and h(f) is the depth of the strip
-// that hangs from f. The offset admits a strip whose top lies a little below a free edge
-// that flares apart (the closed three-leaflet valve: free edges stretched from 20.9 to
-// 26-28 mm fold up at the centre, and the contact band begins one row of triangles, 1.6-2 mm,
-// below them), while contact patches further down (a belly touching a neighbour) stay out
-// of the height. Assigning each node to its nearest free-edge node measures the strip
-// "straight down" from f without a second geometric construction. The graph distance
-// follows the mesh, so it overestimates a straight line by at most the zig-zag of the
-// triangulation (exact along grid lines of a structured mesh).
+// Heights, along the leaflet's columns (leaflet_columns.hpp: material lines from each point
+// of the free edge straight down the rest leaflet). Down a column, c = the coapting
+// indicator of the unshared nodes, interpolated linearly over the triangles (the same
+// interpolant as the area, so a band's border lies, on average, half way between a coapting
+// and a non-coapting node); ℓ = deformed length along the column from the free edge:
+//   top(s) = the first ℓ where c reaches 0.5   (band only if top(s) ≤ free_edge_offset_mm)
+//   h(s)   = the next ℓ where c drops below 0.5 (or the column's end) − top(s)
+// (0 without a band). Where the free edge itself coapts, top(s) = 0 and h(s) is the depth
+// of the strip that hangs from it. The offset admits a strip whose top lies a little below a
+// free edge that flares apart (the closed three-leaflet valve: free edges stretched from 20.9
+// to 26-28 mm fold up at the centre, and the contact band begins one row of triangles,
+// 1.6-2 mm, below them), while contact patches further down (a belly touching a neighbour)
+// stay out of the height. Columns are sampled every 1/200 of the free edge's rest length,
+// and at both margins and the middle.
+// Until session 25 the columns were sets of nodes (each node in the column of its nearest
+// free-edge node, by graph distance over the deformed mesh) and h ran to the deepest node of
+// the band. On the aortic valve's unstructured mesh some free-edge nodes are the nearest of
+// no other node, so their columns read 0 whatever coapted below them; see leaflet_columns.hpp.
 //
 // Reach of the free edges (given the valve axis). In a sealed three-leaflet valve the free
 // edges meet on the axis; a free edge that stops short of it leaves a hole at the centre,
-// whatever the bands beside it do. free_edge_axis_distance_mm is the smallest distance from
+// whatever the bands beside it do (the projected orifice, orifice.hpp, measures that hole's
+// area). free_edge_axis_distance_mm is the smallest distance from
 // a leaflet's deformed free-edge nodes to the axis (a node sampling, so within half a
 // free-edge segment of the polyline's own closest approach). Why a separate measure: the
 // heights say where a band is broken, not how far the leaflet is from closing the hole, which
 // is what changes between repairs and between solver settings.
 //
-// Minimum height: the minimum of h over the free-edge nodes whose rest arc length from
-// either end of the free edge is at least commissure_margin × the free edge's rest length:
+// Minimum height: the minimum of h over the columns whose rest arc length from either end
+// of the free edge is at least commissure_margin × the free edge's rest length:
 // at the commissures the strip shrinks to nothing by anatomy, not because of a bad
-// closure, so the ends are excluded. A leaflet is closed when that minimum is > 0, i.e.
-// its coaptation strip is continuous along the free edge between the margins.
+// closure, so the ends are excluded. A leaflet is closed when that minimum is at least
+// closed_min_height_mm (0.5 mm, the leaflet's thickness): its coaptation strip runs along the
+// whole free edge between the margins and is nowhere pinched thinner than the leaflet.
+// Why not > 0: heights along interpolated columns are continuous, so a band pinched to a
+// point reads from rounding (1e-15 mm) to a few hundredths of a millimetre where it breaks:
+// of the 29 valves of the graft and ten-mesh studies that > 0 called closed (session 25),
+// 9 had minima of 1e-15 to 0.08 mm and one 0.33 mm; the next smallest was 0.81 mm.
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -91,9 +99,12 @@ struct CoaptationOptions {
   /// count as coaptation from the free edge: the seed's normal valve coapts to about 3 mm
   /// below the free edge (Fig. 4.4C), so a band that begins deeper is not that coaptation.
   double free_edge_offset_mm = 3.0;
+  /// A leaflet is closed when its minimum height is at least this (mm; see above).
+  double closed_min_height_mm = 0.5;
   /// The valve's axis (aortic valve: the root's); without it the free-edge reach is not computed.
   std::optional<ValveAxis> axis;
   void validate() const;  // throws InputError: threshold not > 0, margin outside [0, 0.5),
+                          // closed_min_height not finite and > 0,
                           // an axis that is not finite or has no direction
 };
 
@@ -110,13 +121,13 @@ struct LeafletCoaptation {
   int leaflet = 0;
   double area_mm2 = 0;            // deformed, interpolated indicator (see above)
   std::vector<int> free_edge;     // free_edge_polyline(mesh, leaflet), corners included
-  std::vector<double> height_mm;  // h(f) per free_edge node (0 without a band)
-  std::vector<double> band_top_mm;  // top(f) per free_edge node; -1 without a band
-  int middle_node = -1;           // free_edge_middle_node(mesh, leaflet)
-  double midline_height_mm = 0;   // h at middle_node (0 if there is none)
-  double midline_band_top_mm = -1;  // top at middle_node (-1 without a band)
-  /// Minimum of h over the free-edge nodes outside the commissure margins; if no node lies
-  /// between the margins (very coarse free edge), h at the middle node. 0 without free edge.
+  /// The sampled columns, ascending: rest arc length of each along the free edge, h and top
+  /// (-1 without a band). Empty without a free edge.
+  std::vector<double> column_arc_mm, column_height_mm, column_band_top_mm;
+  int middle_node = -1;             // free_edge_middle_node(mesh, leaflet)
+  double midline_height_mm = 0;     // h of the column at half the free edge's rest length
+  double midline_band_top_mm = -1;  // its top (-1 without a band)
+  /// Minimum of h over the columns between the commissure margins; 0 without free edge.
   double min_height_mm = 0;
   /// Rest length of the free-edge segments whose two end nodes coapt, over the rest length
   /// of the free edge (0 without free edge).
@@ -124,7 +135,7 @@ struct LeafletCoaptation {
   /// Smallest distance of the deformed free-edge nodes to the valve axis; -1 without an axis
   /// or a free edge.
   double free_edge_axis_distance_mm = -1;
-  bool closed = false;  // min_height_mm > 0
+  bool closed = false;  // min_height_mm >= closed_min_height_mm
 };
 
 struct CoaptationResult {
@@ -137,6 +148,10 @@ struct CoaptationResult {
   /// Largest free_edge_axis_distance_mm of the leaflets that have a free edge: how far from
   /// the axis the farthest free edge stops (-1 without an axis or without free edges).
   double max_free_edge_axis_distance_mm = -1;
+  /// Given the axis: the projected orifice (orifice.hpp), the part of the valve's
+  /// cross-section no leaflet of thickness threshold_mm covers, seen along the axis (mm²;
+  /// -1 without an axis or attached nodes).
+  double orifice_area_mm2 = -1;
   /// One line: closed / central gap and per leaflet area, midline and minimum height, and the
   /// free edge's distance from the axis when there is one.
   std::string report() const;
@@ -145,6 +160,10 @@ struct CoaptationResult {
 /// The summary block valve-simulate and valve-coaptation write (metrics.coaptation): the
 /// verdicts, per leaflet area, heights, free-edge reach, and the options used.
 nlohmann::json coaptation_metrics(const CoaptationResult& result, const CoaptationOptions& options);
+
+/// The sampled columns of every leaflet as CSV, one row per column:
+/// leaflet,arc_mm,height_mm,band_top_mm (rest arc length along the free edge, h, top or -1).
+std::string coaptation_columns_csv(const CoaptationResult& result);
 
 /// Coaptation of the deformed valve `x` (3N, node-major, mm). Throws InputError when x does
 /// not have 3N finite entries, per-node or per-triangle arrays have the wrong size, a leaflet

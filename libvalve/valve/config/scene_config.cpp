@@ -199,6 +199,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     co.free_edge_offset_mm =
         c.quantity("free_edge_offset", Dimension::length, std::to_string(co.free_edge_offset_mm) + " mm", 0.0, 1e3);
     co.commissure_margin = c.number("commissure_margin", co.commissure_margin, 0.0, 0.499);
+    co.closed_min_height_mm =
+        c.quantity("closed_min_height", Dimension::length, std::to_string(co.closed_min_height_mm) + " mm", 1e-6, 1e3);
     r.record("coaptation", c.finish());
   }
   if (r.has("chordae")) {
