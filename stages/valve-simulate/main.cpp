@@ -3,7 +3,9 @@
 //                [--time-series] [--quiet]
 // Simulates the scene (flags override its keys) and writes DIR/closed.sim.vtp (Displacement,
 // GreenStrain, StretchFiber, StretchCross, AreaRatio, and PK2Stress for the FE model),
-// optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json.
+// optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json; with several
+// leaflets also DIR/coaptation_columns.csv (the coaptation band's height down each column of
+// every free edge, analysis/coaptation.hpp).
 // Exit 0 ok, 2 bad input, 3 not converged or failed (the summary says why; a non-converged
 // run still writes its last state, a failed one writes no mesh).
 #include <algorithm>
@@ -14,6 +16,7 @@
 #include <set>
 
 #include "valve/analysis/coaptation.hpp"
+#include "valve/core/atomic_file.hpp"
 #include "valve/analysis/surface_intersections.hpp"
 #include "valve/io/chordae_io.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
@@ -214,6 +217,7 @@ int main(int argc, char** argv) {
       summary.metrics()["coaptation"] = coaptation_metrics(*coaptation, coaptation_options);
     }
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
+    if (coaptation) write_file_atomic(out / "coaptation_columns.csv", coaptation_columns_csv(*coaptation));
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);
 
     double max_disp = 0;

@@ -296,8 +296,13 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
       const double lo = opt.commissure_margin * total, hi = total - lo, middle = 0.5 * total;
       std::vector<double> samples{lo, hi, middle};
       for (int k = 1; k <= kColumns; ++k) samples.push_back(total * k / kColumns);
+      // Samples within eps of each other are one column (the margins and the middle usually
+      // fall on the even spacing up to rounding), and the margins admit them within eps, so
+      // the same valve gives the same columns whatever the rounding of its rest lengths.
+      const double eps = 1e-9 * total;
       std::sort(samples.begin(), samples.end());
-      samples.erase(std::unique(samples.begin(), samples.end()), samples.end());
+      samples.erase(std::unique(samples.begin(), samples.end(), [eps](double a, double b) { return b - a <= eps; }),
+                    samples.end());
       double min_height = kInf;
       for (double s : samples) {
         const ColumnBand band = column_band(columns.trace(std::max(s, 1e-9 * total)), x, band_indicator,
@@ -305,8 +310,8 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
         lc.column_arc_mm.push_back(s);
         lc.column_height_mm.push_back(band.height);
         lc.column_band_top_mm.push_back(band.top);
-        if (s >= lo && s <= hi) min_height = std::min(min_height, band.height);
-        if (s == middle) lc.midline_height_mm = band.height, lc.midline_band_top_mm = band.top;
+        if (s >= lo - eps && s <= hi + eps) min_height = std::min(min_height, band.height);
+        if (std::abs(s - middle) <= eps) lc.midline_height_mm = band.height, lc.midline_band_top_mm = band.top;
       }
       lc.min_height_mm = min_height;
       if (opt.axis) {
