@@ -11,11 +11,12 @@
 //     each free edge left out of the minimum height at both ends), --closed-min-height 0.5
 //     (mm; a leaflet is closed when its minimum height is at least this);
 //   --axis-point / --axis-direction: the valve's axis (the aortic root's: 0,0,0 and 0,0,1 for
-//     valve-generate aortic_valve); with it, each free edge's distance from the axis.
+//     valve-generate aortic_valve); with it, each free edge's distance from the axis and the
+//     projected orifice (the cross-section no leaflet covers, seen along the axis).
 // CLOSED.vtp needs the Leaflet and BoundaryType arrays (valve-simulate's closed.sim.vtp has
-// them). Its points are the closed shape; the rest shape, which sets the commissure margins
-// along each free edge, is points minus its Displacement array, or the points themselves
-// when it has none.
+// them). Its points are the closed shape; the rest shape, which sets the columns down each
+// leaflet and the commissure margins along each free edge, is points minus its Displacement
+// array, or the points themselves when it has none.
 // Writes DIR/coaptation.vtp (CLOSED.vtp's mesh with CoaptationGap_mm and Coapting),
 // DIR/coaptation_columns.csv (per leaflet the band height down each sampled column of the
 // free edge: leaflet,arc_mm,height_mm,band_top_mm) and DIR/coaptation.summary.json
