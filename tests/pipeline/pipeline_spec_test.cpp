@@ -185,6 +185,10 @@ TEST_CASE("structural errors: keys, steps, variables, zip, gather, plots", "[pip
              Catch::Contains("plots[0].gnuplot: expected a script without set output"));
   CHECK_THAT(message_of(with_variables(R"({"a": [1]})", "[]", ok_gather + R"(, "plots": [{"png": "p.png", "csv": "t.csv", "gnuplot": "plot '${a}'"}])")),
              Catch::Contains("plots[0].gnuplot: expected a known variable, found ${a}"));
+  // Columns named in a plot must be its table's (gather t.csv has the one column c).
+  CHECK(message_of(with_variables(R"({"a": [1]})", "[]", ok_gather + R"J(, "plots": [{"png": "p.png", "csv": "t.csv", "gnuplot": "plot '${csv}' using (column('c')):(strcol(\"d\") eq 'x' ? 1 : 0)"}])J")) ==
+        "P.json: plots[0].gnuplot: expected columns of t.csv (c), found \"d\"");
+  CHECK_NOTHROW(parse(with_variables(R"({"a": [1]})", "[]", ok_gather + R"J(, "plots": [{"png": "p.png", "csv": "t.csv", "gnuplot": "plot '${csv}' using (column('c')):(strcol('c') eq 'x' ? 1 : 0)"}])J")));
   // A valid one parses, with the plot lines joined.
   const auto spec = parse(with_variables(R"({"a": [1]})", "[]", ok_gather + R"(, "plots": [{"png": "p.png", "csv": "t.csv", "gnuplot": ["set offsets 1,1,1,1", "plot '${csv}'"]}])"));
   CHECK(spec.plots[0].gnuplot == "set offsets 1,1,1,1\nplot '${csv}'\n");

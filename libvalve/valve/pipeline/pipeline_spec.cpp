@@ -454,6 +454,18 @@ PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const st
     fail(file, gkey, "a string or a list of strings (lines)", describe(text));
   }
   check_placeholders(plot.gnuplot, plot_builtins, {}, file, gkey);
+  // Columns named in the script (column('x'), strcol("x"), stringcolumn('x')) must be the
+  // table's: gnuplot would only find out after every run, with "all points undefined".
+  std::vector<std::string> header;
+  if (const auto g = std::find_if(spec.gather.begin(), spec.gather.end(), [&](const GatherSpec& e) { return e.csv == plot.csv; });
+      g != spec.gather.end())
+    header = headers(g->columns);
+  for (const auto& a : spec.aggregates)
+    if (a.csv == plot.csv) header = a.header;
+  static const std::regex named_column(R"(\b(?:column|strcol|stringcolumn)\s*\(\s*(['"])([^'"]*)\1\s*\))");
+  for (auto it = std::sregex_iterator(plot.gnuplot.begin(), plot.gnuplot.end(), named_column); it != std::sregex_iterator(); ++it)
+    if (std::find(header.begin(), header.end(), (*it)[2].str()) == header.end())
+      fail(file, gkey, "columns of " + plot.csv + " (" + join(header, ", ") + ")", "\"" + (*it)[2].str() + "\"");
   // The runner owns the output file: it writes to a temporary image and renames it.
   static const std::regex sets_output(R"(\bset\s+o(u|ut|utp|utpu|utput)?\b)");
   std::smatch m;

@@ -49,6 +49,9 @@
 //   "plots": [                           // optional: rendered with gnuplot when it is on PATH
 //     {"png": "error.png", "csv": "biaxial.csv",   // csv: a gather or an aggregate table
 //      "gnuplot": "plot '${csv}' using 2:5 with points"}   // a string or a list of lines
+//                                       // columns named in it (column('x'), strcol('x'))
+//                                       // must be the table's; with "set datafile
+//                                       // columnheaders" they survive added columns
 //   ]
 // }
 // Comments (// and /* */) are allowed in pipeline files.
