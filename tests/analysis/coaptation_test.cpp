@@ -162,7 +162,12 @@ TEST_CASE("coaptation: sheets 0.3 mm apart coapt over their overlap", "[analysis
   CHECK(csv.rfind("leaflet,arc_mm,height_mm,band_top_mm\n", 0) == 0);
   CHECK(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')) ==
         1 + r.leaflets[0].column_arc_mm.size() + r.leaflets[1].column_arc_mm.size());
-  CHECK(csv.find("\n0,5,3.252493781,0\n") != std::string::npos);
+  // The midline column of leaflet 0, parsed back: arc 5 mm, the lower sheet's height, top 0.
+  const std::size_t row = csv.find("\n0,5,");
+  REQUIRE(row != std::string::npos);
+  const std::string fields = csv.substr(row + 5, csv.find('\n', row + 1) - row - 5);
+  CHECK(std::stod(fields.substr(0, fields.find(','))) == Approx(2.75 + std::hypot(0.5, kLip)).margin(1e-8));
+  CHECK(std::stod(fields.substr(fields.find(',') + 1)) == 0);
 }
 
 TEST_CASE("coaptation: same numbers after a rigid motion", "[analysis][coaptation]") {
@@ -408,6 +413,13 @@ TEST_CASE("coaptation: free-edge distance to a given axis", "[analysis][coaptati
   CHECK(r.leaflets[1].free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
   CHECK(r.max_free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
   CHECK(r.report().find("mm from the axis") != std::string::npos);
+  // The axis lies beside the sheets: no cross-section to measure an orifice in. Through
+  // them, the lower sheet covers its whole square: no opening.
+  CHECK(r.orifice_area_mm2 == -1);
+  CoaptationOptions through;
+  through.axis = ValveAxis{Vec3(5, 5, 0), Vec3(0, 0, 1)};
+  CHECK(analyze_coaptation(m, x, through).orifice_area_mm2 == 0);
+  CHECK(analyze_coaptation(m, x).orifice_area_mm2 == -1);  // no axis
   CoaptationOptions huge = vertical;
   huge.axis->direction = Vec3(0, 0, 1e200);  // would overflow a plain norm
   CHECK(analyze_coaptation(m, x, huge).leaflets[0].free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));

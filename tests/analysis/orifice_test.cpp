@@ -60,8 +60,14 @@ TEST_CASE("orifice: the gap between two sheets, narrowed by their thickness", "[
   // Sheets 0.25 mm apart (the contact's separation) with half the 0.5 mm threshold: sealed.
   const TriMesh touching = split_square(0.25);
   CHECK(projected_orifice(touching, flatten(touching.points), axis, 0.25).area_mm2 == 0);
-  // Seen along the sheets' plane, nothing covers anything: the cross-section has no area.
-  CHECK(projected_orifice(m, x, ValveAxis{Vec3(0, 0, 0), Vec3(1, 0, 0)}, 0.25).cross_section_mm2 == Approx(0).margin(1e-9));
+  // Seen along the sheets' plane the ring collapses onto a line through the axis, and from
+  // an axis beside the sheets it is seen from outside: neither has a cross-section.
+  CHECK(projected_orifice(m, x, ValveAxis{Vec3(0, 0, 0), Vec3(1, 0, 0)}, 0.25).area_mm2 == -1);
+  const OrificeResult beside = projected_orifice(m, x, ValveAxis{Vec3(7, 0, 0), Vec3(0, 0, 1)}, 0.25);
+  CHECK(beside.area_mm2 == -1);
+  CHECK(beside.cross_section_mm2 == -1);
+  // An axis anywhere inside the ring gives the same opening.
+  CHECK(projected_orifice(m, x, ValveAxis{Vec3(-3, 2, 5), Vec3(0, 0, -1)}, 0.25).area_mm2 == Approx(0.5 * 10).margin(0.4));
 }
 
 TEST_CASE("orifice: the same after a rigid motion of valve and axis", "[analysis][orifice]") {
@@ -82,6 +88,10 @@ TEST_CASE("orifice: without attached nodes there is no cross-section; bad argume
   CHECK_THROWS_AS(projected_orifice(m, x, axis, -0.1), InputError);
   CHECK_THROWS_AS(projected_orifice(m, x, axis, 0.25, 0.0), InputError);
   CHECK_THROWS_AS(projected_orifice(m, x, ValveAxis{Vec3(0, 0, 0), Vec3(0, 0, 0)}, 0.25), InputError);
+  CHECK_THROWS_AS(projected_orifice(m, VecX::Zero(6), axis, 0.25), InputError);
+  VecX bad = x;
+  bad[4] = std::nan("");
+  CHECK_THROWS_AS(projected_orifice(m, bad, axis, 0.25), InputError);
   for (auto& b : m.boundary) b = BoundaryType::free_edge;
   const OrificeResult none = projected_orifice(m, x, axis, 0.25);
   CHECK(none.area_mm2 == -1);

@@ -159,9 +159,7 @@ void CoaptationOptions::validate() const {
     throw_input_error("coaptation", "closed_min_height_mm", "a finite height > 0 mm", std::to_string(closed_min_height_mm));
   if (!(free_edge_offset_mm >= 0) || !std::isfinite(free_edge_offset_mm))
     throw_input_error("coaptation", "free_edge_offset_mm", "a finite distance >= 0 mm", std::to_string(free_edge_offset_mm));
-  // stableNorm: a finite direction of any size, 1e-170 or 1e200, is a direction.
-  const double length = axis ? axis->direction.stableNorm() : 1.0;
-  if (axis && (!axis->point.allFinite() || !(length > 0) || !std::isfinite(length)))
+  if (axis && !axis->valid())
     throw_input_error("coaptation", "axis", "a finite point and a non-zero finite direction", "a degenerate axis");
 }
 
@@ -295,7 +293,8 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
       // column is traced a hair inside the free edge, where it begins.
       const double lo = opt.commissure_margin * total, hi = total - lo, middle = 0.5 * total;
       std::vector<double> samples{lo, hi, middle};
-      for (int k = 1; k <= kColumns; ++k) samples.push_back(total * k / kColumns);
+      // (total * k / kColumns can round past total at k = kColumns, where no column begins.)
+      for (int k = 1; k <= kColumns; ++k) samples.push_back(std::min(total * k / kColumns, total));
       // Samples within eps of each other are one column (the margins and the middle usually
       // fall on the even spacing up to rounding), and the margins admit them within eps, so
       // the same valve gives the same columns whatever the rounding of its rest lengths.
@@ -315,7 +314,7 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
       }
       lc.min_height_mm = min_height;
       if (opt.axis) {
-        const Vec3 u = opt.axis->direction / opt.axis->direction.stableNorm();
+        const Vec3 u = opt.axis->unit_direction();
         double nearest = kInf;
         for (int v : lc.free_edge) {
           const Vec3 d = node3(x, v) - opt.axis->point;

@@ -72,6 +72,7 @@
 // of the 29 valves of the graft and ten-mesh studies that > 0 called closed (session 25),
 // 9 had minima of 1e-15 to 0.08 mm and one 0.33 mm; the next smallest was 0.81 mm.
 #include <nlohmann/json.hpp>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <vector>
@@ -84,6 +85,12 @@ namespace valve {
 struct ValveAxis {
   Vec3 point = Vec3::Zero();
   Vec3 direction = Vec3::UnitZ();
+  /// A finite point and a finite, non-zero direction of any size (1e-170 or 1e200).
+  bool valid() const {
+    const double length = direction.stableNorm();
+    return point.allFinite() && length > 0 && std::isfinite(length);
+  }
+  Vec3 unit_direction() const { return direction / direction.stableNorm(); }
 };
 
 /// How a node's gap to the other leaflets is measured (see above).
@@ -150,7 +157,8 @@ struct CoaptationResult {
   double max_free_edge_axis_distance_mm = -1;
   /// Given the axis: the projected orifice (orifice.hpp), the part of the valve's
   /// cross-section no leaflet of thickness threshold_mm covers, seen along the axis (mm²;
-  /// -1 without an axis or attached nodes).
+  /// -1 without an axis, without attached nodes, or when the axis does not pass inside
+  /// their ring, e.g. sheets measured against an axis beside them).
   double orifice_area_mm2 = -1;
   /// One line: closed / central gap and per leaflet area, midline and minimum height, and the
   /// free edge's distance from the axis when there is one.

@@ -69,17 +69,32 @@ LeafletColumns::LeafletColumns(const TriMesh& m, int leaflet) {
       weight[e - edges_.data()] += 0.5 * e1.dot(e2) / twice_area;
     }
   std::vector<double> diagonal(n, 0.0);
+  std::vector<std::vector<int>> neighbours(n);  // over positive weights
   for (std::size_t e = 0; e < edges_.size(); ++e) {
     weight[e] = std::max(weight[e], 0.0);
     diagonal[edges_[e].a] += weight[e];
     diagonal[edges_[e].b] += weight[e];
+    if (weight[e] > 0) neighbours[edges_[e].a].push_back(edges_[e].b), neighbours[edges_[e].b].push_back(edges_[e].a);
   }
-  // An interior node that no positive weight ties to the rest keeps its projection.
+  // Interior nodes that no chain of positive weights ties to the border (possible only where
+  // clamped obtuse angles cut a patch off) keep their projection: left unknown, they would
+  // make the system singular. Every other unknown then reaches a border value, so the
+  // matrix is irreducibly diagonally dominant, hence positive definite.
+  std::vector<char> reached(fixed);
+  std::vector<int> stack;
+  for (int v = 0; v < n; ++v)
+    if (fixed[v]) stack.push_back(v);
+  while (!stack.empty()) {
+    const int v = stack.back();
+    stack.pop_back();
+    for (int w : neighbours[v])
+      if (!reached[w]) reached[w] = 1, stack.push_back(w);
+  }
   std::vector<int> unknown(n, -1);
   int nu = 0;
   for (int v = 0; v < n; ++v) {
     if (!in_leaflet[v] || fixed[v]) continue;
-    if (diagonal[v] > 0)
+    if (reached[v])
       unknown[v] = nu++;
     else
       across_[v] = nearest_arc(node3(X, v), free_edge_, arc_, X);
@@ -106,8 +121,8 @@ LeafletColumns::LeafletColumns(const TriMesh& m, int leaflet) {
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
   const VecX s = solver.info() == Eigen::Success ? VecX(solver.solve(rhs)) : VecX();
   const bool solved = s.size() == nu && s.allFinite();
-  // A part of the leaflet that no positive weight ties to its border makes L singular; the
-  // projection, which the harmonic values refine, stands in for the whole leaflet then.
+  // Not expected (the matrix is positive definite); should the factorization fail all the
+  // same, the projection, which the harmonic values only refine, stands in.
   for (int v = 0; v < n; ++v)
     if (unknown[v] >= 0) across_[v] = solved ? s[unknown[v]] : nearest_arc(node3(X, v), free_edge_, arc_, X);
 }
@@ -128,7 +143,7 @@ std::vector<EdgePoint> LeafletColumns::trace(double s) const {
   const auto crossing = [&](int below, int over) {
     return EdgePoint{below, over, (s - across_[below]) / (across_[over] - across_[below])};
   };
-  // The free-edge segment where the column begins: arc_[k] < s <= arc_[k + 1].
+  // The free-edge segment where the column begins: arc_[k - 1] < s <= arc_[k].
   std::size_t k = 1;
   while (k + 1 < arc_.size() && arc_[k] < s) ++k;
   int u = free_edge_[k - 1], v = free_edge_[k];  // u below, v above

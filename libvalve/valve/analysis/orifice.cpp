@@ -45,12 +45,15 @@ OrificeResult projected_orifice(const TriMesh& m, const VecX& x, const ValveAxis
     throw_input_error("orifice", "pixel_mm", "a finite size > 0 mm", std::to_string(pixel_mm));
   if (!(dilation_mm >= 0) || !std::isfinite(dilation_mm))
     throw_input_error("orifice", "dilation_mm", "a finite distance >= 0 mm", std::to_string(dilation_mm));
-  const double length = axis.direction.stableNorm();
-  if (!axis.point.allFinite() || !(length > 0) || !std::isfinite(length))
-    throw_input_error("orifice", "axis", "a finite point and a non-zero finite direction", "a degenerate axis");
-  const Vec3 u = axis.direction / length;
-  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  if (!axis.valid()) throw_input_error("orifice", "axis", "a finite point and a non-zero finite direction", "a degenerate axis");
   const int n = m.num_nodes();
+  if (x.size() != 3 * static_cast<Eigen::Index>(n))
+    throw_input_error("orifice", "positions", std::to_string(3 * n) + " entries (3 per node)", std::to_string(x.size()));
+  if (!x.allFinite()) throw_input_error("orifice", "positions", "finite coordinates", "NaN or inf");
+  if (static_cast<int>(m.boundary.size()) != n)
+    throw_input_error("orifice", "BoundaryType", std::to_string(n) + " values", std::to_string(m.boundary.size()));
+  const Vec3 u = axis.unit_direction();
+  const Vec3 e1 = u.unitOrthogonal(), e2 = u.cross(e1);
   std::vector<Vec2> p(n);
   for (int i = 0; i < n; ++i) {
     const Vec3 d = node3(x, i) - axis.point;
@@ -66,6 +69,11 @@ OrificeResult projected_orifice(const TriMesh& m, const VecX& x, const ValveAxis
     if (used[i] && m.boundary[i] == BoundaryType::attached) ring.push_back({std::atan2(p[i].y(), p[i].x()), i});
   if (ring.size() < 3) return {};
   std::sort(ring.begin(), ring.end());
+  // The polygon is the ring in angular order only if the axis passes inside it: then no two
+  // neighbouring attached nodes are half a turn or more apart, seen from the axis.
+  double widest = 2 * M_PI + ring.front().first - ring.back().first;
+  for (std::size_t k = 1; k < ring.size(); ++k) widest = std::max(widest, ring[k].first - ring[k - 1].first);
+  if (widest >= M_PI) return {};
   std::vector<Vec2> polygon;
   for (const auto& [angle, i] : ring) polygon.push_back(p[i]);
   const int np = static_cast<int>(polygon.size());
@@ -80,7 +88,8 @@ OrificeResult projected_orifice(const TriMesh& m, const VecX& x, const ValveAxis
   r.cross_section_mm2 = 0.5 * std::abs(twice_area);
 
   const Vec2 size = hi - lo;
-  const double pixel = std::max(pixel_mm, std::sqrt(size.x() * size.y() / kMaxPixels));
+  // Both the area and each side are capped (a ring seen edge-on has a long, thin box).
+  const double pixel = std::max({pixel_mm, std::sqrt(size.x() * size.y() / kMaxPixels), size.maxCoeff() / std::sqrt(kMaxPixels)});
   const int nx = std::max(1, static_cast<int>(std::ceil(size.x() / pixel)));
   const int ny = std::max(1, static_cast<int>(std::ceil(size.y() / pixel)));
   const auto centre = [&](int ix, int iy) { return Vec2(lo.x() + (ix + 0.5) * pixel, lo.y() + (iy + 0.5) * pixel); };

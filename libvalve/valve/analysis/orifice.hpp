@@ -27,13 +27,14 @@
 namespace valve {
 
 struct OrificeResult {
-  double area_mm2 = -1;            // -1 when the mesh has fewer than 3 attached nodes
-  double cross_section_mm2 = -1;   // area of the cross-section polygon
+  double area_mm2 = -1;            // -1 when the mesh has fewer than 3 attached nodes or the
+                                   // axis does not pass inside their ring
+  double cross_section_mm2 = -1;   // area of the cross-section polygon (-1 likewise)
 };
 
 /// Projected orifice of the deformed valve `x` (3N, node-major, mm) along `axis`, the
-/// leaflets dilated by `dilation_mm`. Throws InputError for a non-positive pixel or a
-/// negative dilation.
+/// leaflets dilated by `dilation_mm`. Throws InputError for a non-positive pixel, a
+/// negative dilation, a degenerate axis, or positions / BoundaryType of the wrong size.
 OrificeResult projected_orifice(const TriMesh& mesh, const VecX& x, const ValveAxis& axis, double dilation_mm,
                                 double pixel_mm = 0.02);
 

@@ -464,7 +464,8 @@ PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const st
     if (a.csv == plot.csv) header = a.header;
   static const std::regex named_column(R"(\b(?:column|strcol|stringcolumn)\s*\(\s*(['"])([^'"]*)\1\s*\))");
   for (auto it = std::sregex_iterator(plot.gnuplot.begin(), plot.gnuplot.end(), named_column); it != std::sregex_iterator(); ++it)
-    if (std::find(header.begin(), header.end(), (*it)[2].str()) == header.end())
+    if ((*it)[2].str().find("${") == std::string::npos &&  // a name built from a placeholder is left to gnuplot
+        std::find(header.begin(), header.end(), (*it)[2].str()) == header.end())
       fail(file, gkey, "columns of " + plot.csv + " (" + join(header, ", ") + ")", "\"" + (*it)[2].str() + "\"");
   // The runner owns the output file: it writes to a temporary image and renames it.
   static const std::regex sets_output(R"(\bset\s+o(u|ut|utp|utpu|utput)?\b)");
