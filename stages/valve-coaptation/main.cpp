@@ -61,9 +61,11 @@ int main(int argc, char** argv) {
     if (axis_point.has_value() != axis_direction.has_value())
       throw InputError("valve-coaptation: --axis-point/--axis-direction: expected both or neither, found only --" +
                        std::string(axis_point ? "axis-point" : "axis-direction"));
-    if (axis_direction && !(axis_direction->norm() > 0))
-      throw InputError("valve-coaptation: --axis-direction: expected a non-zero x,y,z, found 0,0,0");
     if (axis_direction) options.axis = ValveAxis{*axis_point, *axis_direction};
+    if (options.axis && !options.axis->valid())  // named by its flag here; validate() is the library's guard
+      throw InputError("valve-coaptation: --axis-direction: expected a non-zero finite x,y,z, found " +
+                       std::to_string((*axis_direction)[0]) + "," + std::to_string((*axis_direction)[1]) + "," +
+                       std::to_string((*axis_direction)[2]));
     options.validate();
 
     std::vector<NamedArray> extra;

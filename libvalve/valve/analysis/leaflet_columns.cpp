@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "valve/analysis/leaflet_metrics.hpp"
+#include "valve/mesh/closest_point.hpp"
 #include "valve/mesh/topology.hpp"
 
 namespace valve {
@@ -19,10 +20,9 @@ namespace {
 double nearest_arc(const Vec3& p, const std::vector<int>& line, const std::vector<double>& arc, const VecX& X) {
   double best = std::numeric_limits<double>::infinity(), s = 0;
   for (std::size_t k = 1; k < line.size(); ++k) {
-    const Vec3 a = node3(X, line[k - 1]), d = node3(X, line[k]) - a;
-    const double len2 = d.squaredNorm();
-    const double t = len2 > 0 ? std::clamp((p - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-    const double dist2 = (a + t * d - p).squaredNorm();
+    const Vec3 a = node3(X, line[k - 1]), b = node3(X, line[k]);
+    const double t = point_segment_parameter(p, a, b);
+    const double dist2 = (a + t * (b - a) - p).squaredNorm();
     if (dist2 < best) best = dist2, s = arc[k - 1] + t * (arc[k] - arc[k - 1]);
   }
   return s;

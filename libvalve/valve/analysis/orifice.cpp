@@ -9,20 +9,16 @@
 #include <vector>
 
 #include "valve/core/error.hpp"
+#include "valve/mesh/closest_point.hpp"
 
 namespace valve {
 
 namespace {
 
-using Vec2 = Eigen::Vector2d;
-
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 double segment_distance2(const Vec2& q, const Vec2& a, const Vec2& b) {
-  const Vec2 d = b - a;
-  const double len2 = d.squaredNorm();
-  const double t = len2 > 0 ? std::clamp((q - a).dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (a + t * d - q).squaredNorm();
+  return (a + point_segment_parameter(q, a, b) * (b - a) - q).squaredNorm();
 }
 
 // q inside the triangle (either winding; a degenerate triangle contains nothing) or within

@@ -16,12 +16,17 @@ int nearest_point_index(const MatX3& points, const Vec3& p, double* distance = n
 
 /// Closest point of triangle (a, b, c) to p as barycentric weights (w_a, w_b, w_c).
 Vec3 closest_point_weights(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+/// Parameter s in [0, 1] of the point a + s (b − a) of the segment (a, b) nearest to p (0 when
+/// the segment has no length), for points in the plane (Vec2) or in space (Vec3).
+template <class V>
+double point_segment_parameter(const V& p, const V& a, const V& b) {
+  const V ab = b - a;
+  return std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
+}
 /// Distance from p to the segment (a, b) (to a when the segment has no length). Inline: the
 /// voxelizer calls it for every voxel near a tube.
 inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double s = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (p - (a + s * ab)).norm();
+  return (p - (a + point_segment_parameter(p, a, b) * (b - a))).norm();
 }
 /// Parameters (s, t) of the closest points a + s (b − a), c + t (d − c) of two segments.
 std::pair<double, double> closest_segment_parameters(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
