@@ -113,6 +113,10 @@ TEST_CASE("penalty contact: force magnitude, reaction, energy gradient", "[mecha
   for (int i = 0; i < 6; ++i) total += node3(f, i);
   CHECK(total.norm() < 1e-14);
   CHECK(energy_of(c, x) == Approx(0.15 * 0.15 * 0.15 / 0.75));  // k (δ − d)³ / (3 δ)
+  // energy() adds to what it is given, as every term's must for the system's sum.
+  double running = 2.0;
+  REQUIRE(c.energy(State{x, VecX::Zero(x.size()), 1.0, 0}, running));
+  CHECK(running == Approx(2.0 + 0.15 * 0.15 * 0.15 / 0.75));
   // Beyond the separation: no force, no energy.
   VecX far = x;
   far[3 * 3 + 2] = 0.3;

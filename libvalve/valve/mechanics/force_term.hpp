@@ -31,7 +31,7 @@ class ForceTerm {
   virtual void couplings(std::vector<std::pair<int, int>>& pairs) const = 0;
   /// Adds forces to f (length 3N); adds df/dx to dfdx and df/dv to dfdv when non-null.
   virtual void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const = 0;
-  /// Potential energy (mJ) for conservative terms; terms without one return false.
+  /// Adds the potential energy (mJ) to e for conservative terms; terms without one return false.
   virtual bool energy(const State& s, double& e) const {
     (void)s, (void)e;
     return false;

@@ -204,8 +204,9 @@ void PenaltyContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, Block
 bool PenaltyContactTerm::energy(const State& s, double& e) const {
   std::vector<Contact> scratch;
   const std::vector<Contact>& contacts = contacts_at(s.x, scratch);
-  e = 0;
-  for (const Contact& c : contacts) e += opt_.stiffness * std::pow(opt_.separation - c.distance, 3) / (3 * opt_.separation);
+  double sum = 0;
+  for (const Contact& c : contacts) sum += opt_.stiffness * std::pow(opt_.separation - c.distance, 3) / (3 * opt_.separation);
+  e += sum;
   return true;
 }
 
