@@ -6,7 +6,8 @@
 // BoundaryType and Leaflet arrays, plus generate.summary.json with their quality.
 // KIND: square_patch | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
 // [--gamma DEG] [--commissure-height MM] [--graft-leaflet K --graft-width-pct W
-// --graft-height-pct H], fibers at 25 deg by default). --count K writes K meshes with
+// --graft-height-pct H], fibers at 25 deg by default, descending toward each leaflet's
+// midline; a negative angle mirrors them). --count K writes K meshes with
 // seeds S, S+1, ..., named NAME_<seed>.vtp.
 #include <cstdio>
 #include <filesystem>

@@ -135,6 +135,31 @@ TEST_CASE("aortic valve of seed 4.2.1: cusp outline, cylinder, commissures, qual
   }
 }
 
+TEST_CASE("aortic valve fibers descend toward each midline; a negative angle mirrors them", "[mesh][seed]") {
+  const double pi = 3.14159265358979;
+  for (const double angle : {25.0, -25.0}) {
+    AorticValveOptions o;
+    o.fiber_angle_deg = angle;
+    const TriMesh m = generate_aortic_valve(o);
+    int descending = 0, rising = 0;
+    for (int t = 0; t < m.num_triangles(); ++t) {
+      const auto& tri = m.triangles[t];
+      const Vec3 c = (m.points.row(tri[0]) + m.points.row(tri[1]) + m.points.row(tri[2])).transpose() / 3;
+      // Angle from the leaflet's midline (leaflet k is centred at 2πk/3), wrapped to (−π, π].
+      const double off = std::remainder(std::atan2(c.y(), c.x()) - 2 * pi * m.leaflet[t] / 3, 2 * pi);
+      const double phi = std::atan2(c.y(), c.x());
+      const Vec3 toward_midline = (off < 0 ? 1.0 : -1.0) * Vec3(-std::sin(phi), std::cos(phi), 0);
+      Vec3 f = m.fiber.row(t).transpose();
+      if (f.dot(toward_midline) < 0) f = -f;
+      (f.z() < 0 ? descending : rising) += 1;
+    }
+    INFO("fiber angle " << angle);
+    // Triangles straddling the midline take their centroid's side; none lies exactly on it.
+    if (angle > 0) CHECK(rising == 0);
+    else CHECK(descending == 0);
+  }
+}
+
 TEST_CASE("aortic valve graft: larger rest shape, sewn in at the root's radius", "[mesh][seed]") {
   AorticValveOptions o;
   o.width_scale[0] = 1.21;

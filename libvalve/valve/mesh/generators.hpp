@@ -49,7 +49,8 @@ TriMesh generate_three_leaflet_valve(const LeafletOptions& opt);
 /// compressed circumferentially (TriMesh::initial) until the pressure takes up the slack.
 ///
 /// Fibers (Fig. 4.6): parallel to the free edge, or at fiber_angle_deg to it in a pattern
-/// symmetric about the midline, running down toward the midline like a hammock.
+/// symmetric about the midline, running down toward the midline like a hammock; a negative
+/// angle mirrors the pattern (fibers rising toward the midline).
 struct AorticValveOptions {
   double diameter = 20.0;           // mm, root diameter the leaflets are unstressed at
   double gamma_deg = 22.0;
