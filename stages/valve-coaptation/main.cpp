@@ -22,6 +22,7 @@
 // free edge: leaflet,arc_mm,height_mm,band_top_mm) and DIR/coaptation.summary.json
 // (metrics.coaptation as valve-simulate writes it).
 // Exit 0 ok, 2 bad input (one leaflet only, a bad flag; nothing written).
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <set>
@@ -32,6 +33,7 @@
 #include "valve/core/error.hpp"
 #include "valve/core/stage_arguments.hpp"
 #include "valve/io/mesh_io.hpp"
+#include "valve/mesh/validate.hpp"
 #include "stage_usage.hpp"
 
 using namespace valve;
@@ -70,14 +72,23 @@ int main(int argc, char** argv) {
 
     std::vector<NamedArray> extra;
     TriMesh mesh = read_mesh(file, &extra);
+    validate_mesh(mesh, file.string());
+    const auto has_array = [&](const std::string& name) {
+      return std::any_of(extra.begin(), extra.end(), [&](const NamedArray& a) { return a.name == name; });
+    };
+    // Without it every node is interior: no free edge, so every height would read 0.
+    if (!has_array("BoundaryType"))
+      throw_input_error(file.string(), "BoundaryType", "a point array (0 interior, 1 attached, 2 free edge)", "none");
     const std::set<int> leaflets(mesh.leaflet.begin(), mesh.leaflet.end());
     if (leaflets.size() < 2)
       throw_input_error(file.string(), "Leaflet", "a mesh of at least two leaflets", std::to_string(leaflets.size()) + " leaflet id(s)");
     const MatX3 closed = mesh.points;
     if (!closed.allFinite()) throw_input_error(file.string(), "points", "finite coordinates", "NaN or inf");
     for (const auto& a : extra)
-      if (a.name == "Displacement" && !a.per_cell && a.values.rows() == mesh.num_nodes() && a.values.cols() == 3)
+      if (a.name == "Displacement" && !a.per_cell && a.values.rows() == mesh.num_nodes() && a.values.cols() == 3) {
+        if (!a.values.allFinite()) throw_input_error(file.string(), "Displacement", "finite values", "NaN or infinity");
         mesh.points = closed - a.values;
+      }
     const CoaptationResult result = analyze_coaptation(mesh, flatten(closed), options);
 
     Eigen::MatrixXd gap(mesh.num_nodes(), 1), flag(mesh.num_nodes(), 1);

@@ -170,6 +170,12 @@ int main(int argc, char** argv) {
         }
       }
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
+      // A failed run writes no mesh: none of this run's, and none left from an earlier run
+      // in the same folder beside this summary.
+      for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv"}) {
+        std::error_code ec;
+        fs::remove(out / name, ec);
+      }
       summary.set_status("failed", res.summary.reason);
       summary.write();
       std::fprintf(stderr, "valve-simulate: failed: %s\n", res.summary.reason.c_str());

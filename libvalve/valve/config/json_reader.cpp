@@ -18,6 +18,9 @@ json load_json_file(const std::filesystem::path& path) {
     const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
     throw InputError(path.string() + ": line " + std::to_string(line) +
                      ": expected valid JSON, found a syntax error (" + e.what() + ")");
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double (1e999) fails after the syntax check, without a position.
+    throw InputError(path.string() + ": expected numbers a double can hold, found " + e.what());
   }
 }
 

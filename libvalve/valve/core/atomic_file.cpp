@@ -36,8 +36,10 @@ void write_via_temp(const fs::path& path, const std::function<void(const fs::pat
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) {
-    fs::remove(tmp, ec);
-    throw Error(path.string() + ": cannot move the finished file into place: " + ec.message());
+    const std::string why = ec.message();  // before remove() overwrites ec
+    std::error_code ignored;
+    fs::remove(tmp, ignored);
+    throw Error(path.string() + ": cannot move the finished file into place: " + why);
   }
 }
 
@@ -51,6 +53,8 @@ void write_file_atomic(const fs::path& path, const std::string& content) {
 }
 
 std::string read_text_file(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw_input_error(path.string(), "", "a readable file", "a directory");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw_input_error(path.string(), "", "a readable file", "none");
   std::ostringstream ss;

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/error.hpp"
@@ -48,7 +49,7 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
       values_[name].push_back("true");
     } else if (is_in(flags, name)) {
       if (eq == std::string::npos) {
-        if (i + 1 >= argc) throw InputError(program_ + ": --" + name + ": expected a value, found the end of the command line");
+        if (i + 1 >= argc) throw InputError("--" + name + ": expected a value, found the end of the command line");
         value = argv[++i];
       }
       values_[name].push_back(value);
@@ -56,7 +57,7 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
       std::string known;
       for (const auto& f : flags) known += " --" + f;
       for (const auto& f : switches) known += " --" + f;
-      throw InputError(program_ + ": " + a + ": expected one of" + known + ", found an unknown option (--help prints the usage)");
+      throw InputError(a + ": expected one of" + known + ", found an unknown option (--help prints the usage)");
     }
   }
 }
@@ -94,7 +95,8 @@ void apply_override(nlohmann::json& config, const std::string& assignment, const
 
 std::string CommandLine::require(const std::string& flag) const {
   auto v = get(flag);
-  if (!v) throw InputError(program_ + ": --" + flag + ": expected a value, found nothing (the option is required)");
+  if (!v) throw InputError("--" + flag + ": expected a value, found nothing (the option is required)");
+  if (v->empty()) throw InputError("--" + flag + ": expected a value, found an empty string");
   return *v;
 }
 
@@ -102,6 +104,20 @@ bool CommandLine::has(const std::string& flag) const { return values_.count(flag
 
 StageSummary::StageSummary(std::string stage, fs::path out_dir)
     : stage_(std::move(stage)), out_(std::move(out_dir)), start_(process_start) {
+  // Made here, before any output, so that an unusable --out is a bad input (exit 2) rather
+  // than a filesystem error half way through the writing.
+  if (out_.empty()) throw InputError("--out: expected a directory, found an empty path");
+  std::error_code ec;
+  if (fs::exists(out_, ec) && !fs::is_directory(out_, ec))
+    throw_input_error(out_.string(), "--out", "a directory", "a file that is not one");
+  fs::create_directories(out_, ec);
+  if (ec) throw_input_error(out_.string(), "--out", "a directory that can be created", ec.message());
+  const fs::path probe = out_ / ".write_probe";
+  {
+    std::ofstream test(probe);
+    if (!test) throw_input_error(out_.string(), "--out", "a writable directory", "not writable");
+  }
+  fs::remove(probe, ec);
   doc_ = {{"stage", stage_}, {"status", "ok"}, {"inputs", nlohmann::json::array()},
           {"parameters", nlohmann::json::object()}, {"metrics", nlohmann::json::object()}};
 }

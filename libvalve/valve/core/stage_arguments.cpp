@@ -56,6 +56,8 @@ StageArguments::StageArguments(const CommandLine& cl, const std::vector<std::str
       config_ = nlohmann::json::parse(read_text_file(*file));
     } catch (const nlohmann::json::parse_error& e) {
       throw_input_error(*file, "", "valid JSON", e.what());
+    } catch (const nlohmann::json::out_of_range& e) {
+      throw_input_error(*file, "", "numbers a double can hold", e.what());
     }
     if (!config_.is_object()) throw_input_error(*file, "", "a JSON object", config_.type_name());
     for (auto it = config_.begin(); it != config_.end(); ++it)

@@ -36,6 +36,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Largest coordinate magnitude read (mm): a kilometre is no valve, and 1e300 would overflow
+// the squares and cross products of every geometric query into inf and NaN.
+constexpr double kMaxCoordinateMm = 1e6;
+
+std::string format_number(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+std::string describe_point(const Eigen::RowVector3d& p) {
+  return "(" + format_number(p[0]) + ", " + format_number(p[1]) + ", " + format_number(p[2]) + ")";
+}
+
 std::string lower_extension(const fs::path& p) {
   std::string e = p.extension().string();
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -189,6 +203,10 @@ TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
     double p[3];
     pd->GetPoint(i, p);
     m.points.row(i) << p[0], p[1], p[2];
+    // Squares and cross products of coordinates must not overflow downstream.
+    if (!m.points.row(i).allFinite() || m.points.row(i).cwiseAbs().maxCoeff() > kMaxCoordinateMm)
+      throw_input_error(file, "point " + std::to_string(i), "finite coordinates within ±1e6 mm",
+                        describe_point(m.points.row(i)));
   }
   if (pd->GetNumberOfVerts() + pd->GetNumberOfLines() > 0 && pd->GetNumberOfPolys() == 0)
     throw_input_error(file, "cells", "triangles", "only vertices or lines");
@@ -201,6 +219,10 @@ TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
     if (ids->GetNumberOfIds() != 3)
       throw_input_error(file, "cell " + std::to_string(cell), "a triangle",
                         "a polygon with " + std::to_string(ids->GetNumberOfIds()) + " points");
+    for (int k = 0; k < 3; ++k)
+      if (ids->GetId(k) < 0 || ids->GetId(k) >= np)
+        throw_input_error(file, "cell " + std::to_string(cell), "point indices in [0, " + std::to_string(np - 1) + "]",
+                          std::to_string(ids->GetId(k)));
     m.triangles.emplace_back(static_cast<int>(ids->GetId(0)), static_cast<int>(ids->GetId(1)),
                              static_cast<int>(ids->GetId(2)));
     ++cell;
@@ -208,25 +230,44 @@ TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
   if (m.triangles.empty()) throw_input_error(file, "cells", "at least one triangle", "none");
   // The cell data of a polydata is ordered verts, lines, polys, strips: polys come first
   // here because we rejected verts and lines above.
-  if (auto* fib = pd->GetCellData()->GetArray("FiberDirection"); fib && fib->GetNumberOfComponents() == 3 &&
-                                                                 fib->GetNumberOfTuples() == m.num_triangles()) {
+  // The arrays this project writes must have its shape when present: a file whose array was
+  // cut short or mislabelled is an error, not a mesh read without it.
+  auto shaped = [&](vtkDataArray* a, const char* name, int components, vtkIdType tuples, const char* per) {
+    if (!a) return false;
+    if (a->GetNumberOfComponents() != components || a->GetNumberOfTuples() != tuples)
+      throw_input_error(file, name,
+                        std::to_string(tuples) + " tuples of " + std::to_string(components) + " (one per " + per + ")",
+                        std::to_string(a->GetNumberOfTuples()) + " tuples of " + std::to_string(a->GetNumberOfComponents()));
+    for (vtkIdType i = 0; i < tuples; ++i)
+      for (int c = 0; c < components; ++c)
+        if (!std::isfinite(a->GetComponent(i, c)))
+          throw_input_error(file, std::string(name) + " of " + per + " " + std::to_string(i), "finite values", "NaN or infinity");
+    return true;
+  };
+  // An integer label stored in a float array must be a whole number in [lo, hi].
+  auto label = [&](vtkDataArray* a, vtkIdType i, const char* name, const char* per, double lo, double hi,
+                   const std::string& expected) {
+    const double v = a->GetComponent(i, 0);
+    if (v != std::floor(v) || v < lo || v > hi)
+      throw_input_error(file, std::string(name) + " of " + per + " " + std::to_string(i), expected, format_number(v));
+    return static_cast<int>(v);
+  };
+  if (auto* fib = pd->GetCellData()->GetArray("FiberDirection"); shaped(fib, "FiberDirection", 3, m.num_triangles(), "cell")) {
     m.fiber.resize(m.num_triangles(), 3);
     for (int t = 0; t < m.num_triangles(); ++t)
       for (int c = 0; c < 3; ++c) m.fiber(t, c) = fib->GetComponent(t, c);
   }
-  if (auto* a = pd->GetPointData()->GetArray("NodeRole"); a && a->GetNumberOfTuples() == np) {
-    for (vtkIdType i = 0; i < np; ++i) {
-      const int r = static_cast<int>(a->GetComponent(i, 0));
-      if (r < 0 || r > 2) throw_input_error(file, "NodeRole of point " + std::to_string(i), "0 (free), 1 (fixed) or 2 (prescribed)", std::to_string(r));
-      m.roles.push_back(static_cast<NodeRole>(r));
-    }
-  }
-  if (auto* a = pd->GetPointData()->GetArray("BoundaryType"); a && a->GetNumberOfTuples() == np)
-    for (vtkIdType i = 0; i < np; ++i) m.boundary.push_back(static_cast<BoundaryType>(static_cast<int>(a->GetComponent(i, 0))));
-  if (auto* a = pd->GetCellData()->GetArray("Leaflet"); a && a->GetNumberOfTuples() == m.num_triangles())
-    for (int t = 0; t < m.num_triangles(); ++t) m.leaflet.push_back(static_cast<int>(a->GetComponent(t, 0)));
-  if (auto* a = pd->GetPointData()->GetArray("InitialDisplacement");
-      a && a->GetNumberOfComponents() == 3 && a->GetNumberOfTuples() == np) {
+  if (auto* a = pd->GetPointData()->GetArray("NodeRole"); shaped(a, "NodeRole", 1, np, "point"))
+    for (vtkIdType i = 0; i < np; ++i)
+      m.roles.push_back(static_cast<NodeRole>(label(a, i, "NodeRole", "point", 0, 2, "0 (free), 1 (fixed) or 2 (prescribed)")));
+  if (auto* a = pd->GetPointData()->GetArray("BoundaryType"); shaped(a, "BoundaryType", 1, np, "point"))
+    for (vtkIdType i = 0; i < np; ++i)
+      m.boundary.push_back(static_cast<BoundaryType>(
+          label(a, i, "BoundaryType", "point", 0, 2, "0 (interior), 1 (attached) or 2 (free edge)")));
+  if (auto* a = pd->GetCellData()->GetArray("Leaflet"); shaped(a, "Leaflet", 1, m.num_triangles(), "cell"))
+    for (int t = 0; t < m.num_triangles(); ++t)
+      m.leaflet.push_back(label(a, t, "Leaflet", "cell", 0, 1e6, "a leaflet index in [0, 1e6]"));
+  if (auto* a = pd->GetPointData()->GetArray("InitialDisplacement"); shaped(a, "InitialDisplacement", 3, np, "point")) {
     m.initial = m.points;
     for (vtkIdType i = 0; i < np; ++i)
       for (int c = 0; c < 3; ++c) m.initial(i, c) += a->GetComponent(i, c);
