@@ -135,7 +135,11 @@ int main(int argc, char** argv) {
     options.quiet = cl.has("quiet");
     options.force = cl.has("force");
     options.only_runs = cl.get_all("run");
-    for (const auto& d : cl.get_all("stage-dir")) options.stage_dirs.push_back(fs::absolute(d));
+    for (const auto& d : cl.get_all("stage-dir")) {
+      std::error_code ec;
+      if (!fs::is_directory(d, ec)) throw_input_error(d, "--stage-dir", "a folder of stage executables", "no such folder");
+      options.stage_dirs.push_back(fs::absolute(d));
+    }
     if (cl.has("dry-run")) return dry_run(spec, options);
     const PipelineOutcome result = run_pipeline(spec, options);
 

@@ -1,6 +1,8 @@
 #include "valve/io/mesh_io.hpp"
 
 #include <vtkCellArray.h>
+#include <vtkLogger.h>
+#include <vtkOutputWindow.h>
 #include <vtkCellData.h>
 #include <vtkDataSetSurfaceFilter.h>
 #include <vtkDoubleArray.h>
@@ -8,6 +10,7 @@
 #include <vtkGenericDataObjectReader.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
+#include <vtkObjectFactory.h>
 #include <vtkOBJReader.h>
 #include <vtkPLYReader.h>
 #include <vtkPointData.h>
@@ -64,6 +67,41 @@ vtkSmartPointer<vtkPolyData> to_polydata(vtkDataSet* ds) {
   return surf->GetOutput();
 }
 
+// Counts the errors VTK reports while it lives, printing nothing: installed as VTK's output
+// window (with warnings displayed, or VTK would not report at all), the previous window and
+// setting restored on destruction.
+class CountingOutputWindow : public vtkOutputWindow {
+ public:
+  static CountingOutputWindow* New();
+  vtkTypeMacro(CountingOutputWindow, vtkOutputWindow);
+  void DisplayText(const char*) override {}
+  void DisplayErrorText(const char*) override { ++errors; }
+  int errors = 0;
+};
+vtkStandardNewMacro(CountingOutputWindow);
+
+class ReadErrorCapture {
+ public:
+  ReadErrorCapture() : previous_(vtkOutputWindow::GetInstance()), display_(vtkObject::GetGlobalWarningDisplay()) {
+    vtkOutputWindow::SetInstance(window_);
+    vtkObject::GlobalWarningDisplayOn();
+    // VTK 9 also logs errors to stderr itself; the stages report in one line of their own.
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~ReadErrorCapture() {
+    vtkObject::SetGlobalWarningDisplay(display_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
+  ReadErrorCapture(const ReadErrorCapture&) = delete;
+  ReadErrorCapture& operator=(const ReadErrorCapture&) = delete;
+  bool seen() const { return window_->errors > 0; }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkNew<CountingOutputWindow> window_;
+  int display_;
+};
+
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
   // VTK's own multi-line messages would break the one-line error contract; we check every
   // result ourselves and report in one line.
@@ -72,6 +110,10 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
   if (!fs::exists(path)) throw_input_error(file, "", "an existing mesh file", "no such file");
   const std::string ext = lower_extension(path);
   vtkSmartPointer<vtkDataSet> ds;
+  // VTK readers report a truncated or corrupt file through the output window (often from
+  // their XML parser, not the reader) and return what they got, often no cells; without
+  // this the complaint would be about the missing cells.
+  const ReadErrorCapture errors;
   // VTK readers print to stderr and return empty data on failure; check the result.
   if (ext == ".vtp") {
     vtkNew<vtkXMLPolyDataReader> r;
@@ -111,6 +153,7 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
     throw_input_error(file, "extension", ".vtp|.vtk|.vtu|.stl|.ply|.obj", "\"" + ext + "\"");
   }
   if (!ds) throw_input_error(file, "", "a mesh", "nothing readable");
+  if (errors.seen()) throw_input_error(file, "", "a complete mesh file", "a read error (truncated or corrupt content)");
   return to_polydata(ds);
 }
 

@@ -298,8 +298,7 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   std::error_code ec;
   if (fs::exists(out, ec) && !fs::is_directory(out, ec))
     throw_input_error("valve-pipeline", "--out", "a folder", "the file " + out.string());
-  fs::create_directories(out);
-  StageSummary summary("pipeline", out);
+  StageSummary summary("pipeline", out);  // makes the folder, or refuses it (exit 2)
   if (fs::is_regular_file(spec.file, ec)) summary.add_input("pipeline", spec.file);
   summary.parameters() = nlohmann::json(spec.source);
 
