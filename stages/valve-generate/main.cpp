@@ -9,8 +9,10 @@
 // --graft-height-pct H], fibers at 25 deg by default, descending toward each leaflet's
 // midline; a negative angle mirrors them). --count K writes K meshes with
 // seeds S, S+1, ..., named NAME_<seed>.vtp.
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <sstream>
 
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/core/cli.hpp"
@@ -25,15 +27,31 @@ using namespace valve;
 namespace fs = std::filesystem;
 
 namespace {
+std::string shown_number(double x) {
+  std::ostringstream o;
+  o << x;
+  return o.str();
+}
+
 double parse_number(const CommandLine& cl, const std::string& flag, double fallback, double lo, double hi) {
   const auto v = cl.get(flag);
   if (!v) return fallback;
   char* end = nullptr;
   const double x = std::strtod(v->c_str(), &end);
-  if (end == v->c_str() || *end != '\0' || !(x >= lo && x <= hi))
-    throw InputError(cl.program() + ": --" + flag + ": expected a number in [" + std::to_string(lo) + ", " +
-                     std::to_string(hi) + "], found \"" + *v + "\"");
+  // strtod also reads hexadecimal ("0x20") and "inf"; a flag value is a plain decimal.
+  const bool plain = v->find_first_of("xXnN") == std::string::npos;
+  if (!plain || end == v->c_str() || *end != '\0' || !(x >= lo && x <= hi))
+    throw InputError("--" + flag + ": expected a number in [" + shown_number(lo) + ", " + shown_number(hi) + "], found \"" +
+                     *v + "\"");
   return x;
+}
+
+long parse_integer(const CommandLine& cl, const std::string& flag, long fallback, long lo, long hi) {
+  const double x = parse_number(cl, flag, static_cast<double>(fallback), static_cast<double>(lo), static_cast<double>(hi));
+  if (x != std::floor(x))
+    throw InputError("--" + flag + ": expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "], found \"" + *cl.get(flag) + "\"");
+  return static_cast<long>(x);
 }
 }  // namespace
 
@@ -52,11 +70,14 @@ int main(int argc, char** argv) {
     const fs::path out = cl.require("out");
     const bool valve = kind == "three_leaflet_valve" || kind == "aortic_valve";
     const int default_triangles = kind == "square_patch" ? 229 : (kind == "aortic_leaflet" ? 221 : 663);
-    const int triangles = static_cast<int>(parse_number(cl, "triangles", default_triangles, 2, 5e6));
-    const auto seed = static_cast<std::uint64_t>(parse_number(cl, "seed", 1, 0, 1e15));
-    const int count = static_cast<int>(parse_number(cl, "count", 1, 1, 10000));
+    // A valve's leaflets take a third each, and each needs at least two triangles.
+    const int triangles = static_cast<int>(parse_integer(cl, "triangles", default_triangles, valve ? 6 : 2, 5000000));
+    const auto seed = static_cast<std::uint64_t>(parse_integer(cl, "seed", 1, 0, 1000000000000000L));
+    const int count = static_cast<int>(parse_integer(cl, "count", 1, 1, 10000));
     const double fiber = parse_number(cl, "fiber-angle", kind == "aortic_valve" ? 25 : 0, -360, 360);
     const std::string name = cl.get("name").value_or(kind);
+    if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
+      throw InputError("--name: expected a file name without '/', found \"" + name + "\"");
 
     StageSummary summary("generate", out);
     summary.parameters() = {{"kind", kind}, {"triangles", triangles}, {"seed", seed}, {"count", count},
@@ -67,7 +88,7 @@ int main(int argc, char** argv) {
       TriMesh mesh;
       PlanarMeshOptions mo{triangles / (valve ? 3 : 1), seed + k};
       mo.jitter = parse_number(cl, "jitter", 0.0, 0.0, 100.0);
-      mo.max_iterations = static_cast<int>(parse_number(cl, "relax-iterations", mo.max_iterations, 0, 100000));
+      mo.max_iterations = static_cast<int>(parse_integer(cl, "relax-iterations", mo.max_iterations, 0, 100000));
       if (kind == "square_patch") {
         SquarePatchOptions o;
         o.side = parse_number(cl, "side", 15.0, 1e-6, 1e6);
@@ -81,7 +102,7 @@ int main(int argc, char** argv) {
         o.gamma_deg = parse_number(cl, "gamma", 22.0, 1, 89);
         o.commissure_height = parse_number(cl, "commissure-height", 5.0, 1e-6, 1e6);
         o.fiber_angle_deg = fiber;
-        const int graft = static_cast<int>(parse_number(cl, "graft-leaflet", 0, 0, 2));
+        const int graft = static_cast<int>(parse_integer(cl, "graft-leaflet", 0, 0, 2));
         const double wpct = parse_number(cl, "graft-width-pct", 0, 0, 99), hpct = parse_number(cl, "graft-height-pct", 0, -49, 99);
         o.width_scale[graft] = 1 + wpct / 100;
         o.height_scale[graft] = 1 + hpct / 100;
@@ -96,7 +117,9 @@ int main(int argc, char** argv) {
       } else {
         LeafletOptions o;
         o.diameter = parse_number(cl, "diameter", 20.0, 1e-6, 1e6);
-        o.cylinder_circumference = parse_number(cl, "circumference", 3 * o.diameter, 1e-6, 1e7);
+        // Each leaflet is one diameter wide at the cylinder (seed 3.2.2.1): a single one needs
+        // that much of the circumference.
+        o.cylinder_circumference = parse_number(cl, "circumference", 3 * o.diameter, o.diameter, 1e7);
         o.fiber_angle_deg = fiber;
         o.mesh = mo;
         mesh = kind == "aortic_leaflet" ? generate_aortic_leaflet(o) : generate_three_leaflet_valve(o);

@@ -302,6 +302,11 @@ GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariabl
       col.source = ColumnSpec::Source::row;
       col.text = text.substr(4);
     } else {
+      // "sumary:status" would otherwise fill the column with its own text on every row.
+      const size_t colon = text.find(':');
+      if (colon != std::string::npos && colon > 0 && colon + 1 < text.size() && !std::isspace(static_cast<unsigned char>(text[colon + 1])) &&
+          std::all_of(text.begin(), text.begin() + colon, [](char c) { return std::islower(static_cast<unsigned char>(c)) || c == '_'; }))
+        fail(file, key, "a source summary:, row: or file: (or literal text)", "the unknown source \"" + text.substr(0, colon + 1) + "\"");
       check_placeholders(text, run_builtins, variables, file, key);
     }
     spec.columns.push_back(col);
