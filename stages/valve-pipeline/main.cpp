@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/pipeline/pipeline_spec.hpp"
@@ -119,6 +120,7 @@ int dry_run(const PipelineSpec& spec, const RunnerOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  keep_written_files_on_failure();
   return run_stage("valve-pipeline", kStageUsage, [&] {
     CommandLine cl(argc, argv, {"out", "jobs", "stage-dir", "run"}, {"quiet", "force", "dry-run"});
     const auto& pos = cl.positional();

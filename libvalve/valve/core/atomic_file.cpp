@@ -17,6 +17,15 @@ namespace valve {
 namespace fs = std::filesystem;
 
 namespace {
+struct WrittenFiles {
+  std::vector<fs::path> paths;
+  bool keep = false;
+};
+WrittenFiles& written_files() {
+  static WrittenFiles w;
+  return w;
+}
+
 fs::path temp_sibling(const fs::path& path) {
   return path.parent_path() /
          ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
@@ -41,7 +50,20 @@ void write_via_temp(const fs::path& path, const std::function<void(const fs::pat
     fs::remove(tmp, ignored);
     throw Error(path.string() + ": cannot move the finished file into place: " + why);
   }
+  written_files().paths.push_back(path);
 }
+
+void discard_written_files() {
+  WrittenFiles& w = written_files();
+  if (w.keep) return;
+  for (const auto& p : w.paths) {
+    std::error_code ec;
+    fs::remove(p, ec);
+  }
+  w.paths.clear();
+}
+
+void keep_written_files_on_failure() { written_files().keep = true; }
 
 void write_file_atomic(const fs::path& path, const std::string& content) {
   write_via_temp(path, [&](const fs::path& tmp) {

@@ -15,6 +15,14 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
 void write_via_temp(const std::filesystem::path& path,
                     const std::function<void(const std::filesystem::path&)>& writer);
 
+/// The files written through write_via_temp / write_file_atomic so far in this process.
+/// run_stage removes them when a stage fails with an exception: a stage that stops half way
+/// leaves none of its outputs (each file alone is already atomic; this makes the set so).
+/// valve-pipeline opts out with keep_written_files_on_failure(): its log and tables explain
+/// the failure, and its stages' outputs are theirs.
+void discard_written_files();
+void keep_written_files_on_failure();
+
 /// Reads a whole file; throws InputError naming the file if it cannot be read.
 std::string read_text_file(const std::filesystem::path& path);
 

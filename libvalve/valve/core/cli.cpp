@@ -158,12 +158,15 @@ int run_stage(const std::string& program, const char* usage, const std::function
     std::printf("%s", usage);
     return 0;
   } catch (const InputError& e) {
+    discard_written_files();
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return 2;
   } catch (const NumericalError& e) {
+    discard_written_files();
     std::fprintf(stderr, "%s: numerical failure: %s\n", program.c_str(), e.what());
     return 3;
   } catch (const std::exception& e) {
+    discard_written_files();
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return 1;
   }
