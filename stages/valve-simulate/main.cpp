@@ -61,8 +61,14 @@ int main(int argc, char** argv) {
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
     const bool quiet = cl.has("quiet");
 
-    const TriMesh mesh = read_mesh(scene.mesh_path);
+    std::vector<NamedArray> mesh_arrays;
+    const TriMesh mesh = read_mesh(scene.mesh_path, &mesh_arrays);
     validate_mesh(mesh, scene.mesh_path.string());
+    // Every leaflet law here is anisotropic, and without the array each triangle's fiber
+    // would silently follow its first edge (TriMesh::fill_defaults): a random field.
+    if (std::none_of(mesh_arrays.begin(), mesh_arrays.end(),
+                     [](const NamedArray& a) { return a.per_cell && a.name == "FiberDirection"; }))
+      throw_input_error(scene.mesh_path.string(), "FiberDirection", "a cell array of fiber directions (the leaflet laws are anisotropic)", "none");
     std::optional<TriMesh> closed;
     if (scene.annulus_motion) closed = read_mesh(scene.annulus_motion->closed_mesh);
     const SceneModel model = prepare_scene_model(scene, mesh, closed ? &*closed : nullptr);

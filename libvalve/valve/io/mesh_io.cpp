@@ -317,14 +317,19 @@ TriMesh read_mesh(const fs::path& path, std::vector<NamedArray>* extra) {
     if (!m.initial.allFinite()) throw_input_error(file, "InitialDisplacement", "finite values", "NaN or infinity");
   }
   if (extra) {
-    for (int k = 0; k < pd->GetPointData()->GetNumberOfArrays(); ++k) {
-      vtkDataArray* a = pd->GetPointData()->GetArray(k);
-      if (!a || !a->GetName()) continue;
-      NamedArray na{a->GetName(), Eigen::MatrixXd(a->GetNumberOfTuples(), a->GetNumberOfComponents()), false};
-      for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
-        for (int c = 0; c < a->GetNumberOfComponents(); ++c) na.values(i, c) = a->GetComponent(i, c);
-      extra->push_back(std::move(na));
-    }
+    // Every named array as it is in the file: point data, then cell data (per_cell).
+    auto collect = [&](vtkDataSetAttributes* data, bool per_cell) {
+      for (int k = 0; k < data->GetNumberOfArrays(); ++k) {
+        vtkDataArray* a = data->GetArray(k);
+        if (!a || !a->GetName()) continue;
+        NamedArray na{a->GetName(), Eigen::MatrixXd(a->GetNumberOfTuples(), a->GetNumberOfComponents()), per_cell};
+        for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+          for (int c = 0; c < a->GetNumberOfComponents(); ++c) na.values(i, c) = a->GetComponent(i, c);
+        extra->push_back(std::move(na));
+      }
+    };
+    collect(pd->GetPointData(), false);
+    collect(pd->GetCellData(), true);
   }
   m.fill_defaults();
   return m;

@@ -22,7 +22,8 @@ struct NamedArray {
 
 /// Reads a triangle mesh. Throws InputError (file, what was expected, what was found) for
 /// unreadable files, unknown extensions, non-triangle cells and meshes without cells.
-/// Arrays the file lacks are filled with defaults (TriMesh::fill_defaults).
+/// Arrays the file lacks are filled with defaults (TriMesh::fill_defaults); `extra`, when
+/// given, receives every named point and cell array as it is in the file.
 TriMesh read_mesh(const std::filesystem::path& path, std::vector<NamedArray>* extra = nullptr);
 
 /// Writes `mesh` with point coordinates `positions` (the rest positions if null) and the
