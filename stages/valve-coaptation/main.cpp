@@ -73,11 +73,8 @@ int main(int argc, char** argv) {
     std::vector<NamedArray> extra;
     TriMesh mesh = read_mesh(file, &extra);
     validate_mesh(mesh, file.string());
-    const auto has_array = [&](const std::string& name) {
-      return std::any_of(extra.begin(), extra.end(), [&](const NamedArray& a) { return a.name == name; });
-    };
     // Without it every node is interior: no free edge, so every height would read 0.
-    if (!has_array("BoundaryType"))
+    if (std::none_of(extra.begin(), extra.end(), [](const NamedArray& a) { return !a.per_cell && a.name == "BoundaryType"; }))
       throw_input_error(file.string(), "BoundaryType", "a point array (0 interior, 1 attached, 2 free edge)", "none");
     const std::set<int> leaflets(mesh.leaflet.begin(), mesh.leaflet.end());
     if (leaflets.size() < 2)

@@ -75,6 +75,17 @@ int main(int argc, char** argv) {
     auto system = build_system(scene, model);
 
     StageSummary summary("simulate", out);
+    // This run's outputs replace an earlier run's: none of those may stay beside this run's
+    // summary, whatever this run ends with (a failed run writes no mesh).
+    auto remove_outputs = [&out] {
+      std::error_code ec;
+      for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv"})
+        fs::remove(out / name, ec);
+      if (fs::is_directory(out / "series", ec))
+        for (const auto& e : fs::directory_iterator(out / "series", ec))
+          if (e.path().filename().string().rfind("step_", 0) == 0 && e.path().extension() == ".vtp") fs::remove(e.path(), ec);
+    };
+    remove_outputs();
     summary.add_input("scene", scene_file);
     summary.add_input("mesh", scene.mesh_path);
     if (scene.chordae) summary.add_input("chordae", scene.chordae->file);
@@ -176,12 +187,7 @@ int main(int argc, char** argv) {
         }
       }
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
-      // A failed run writes no mesh: none of this run's, and none left from an earlier run
-      // in the same folder beside this summary.
-      for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv"}) {
-        std::error_code ec;
-        fs::remove(out / name, ec);
-      }
+      remove_outputs();  // this run's chordae and time series
       summary.set_status("failed", res.summary.reason);
       summary.write();
       std::fprintf(stderr, "valve-simulate: failed: %s\n", res.summary.reason.c_str());

@@ -141,7 +141,7 @@ TEST_CASE("aortic valve fibers descend toward each midline; a negative angle mir
     AorticValveOptions o;
     o.fiber_angle_deg = angle;
     const TriMesh m = generate_aortic_valve(o);
-    int descending = 0, rising = 0;
+    int descending = 0, rising = 0, flat = 0;
     for (int t = 0; t < m.num_triangles(); ++t) {
       const auto& tri = m.triangles[t];
       const Vec3 c = (m.points.row(tri[0]) + m.points.row(tri[1]) + m.points.row(tri[2])).transpose() / 3;
@@ -151,10 +151,11 @@ TEST_CASE("aortic valve fibers descend toward each midline; a negative angle mir
       const Vec3 toward_midline = (off < 0 ? 1.0 : -1.0) * Vec3(-std::sin(phi), std::cos(phi), 0);
       Vec3 f = m.fiber.row(t).transpose();
       if (f.dot(toward_midline) < 0) f = -f;
-      (f.z() < 0 ? descending : rising) += 1;
+      (f.z() < -1e-9 ? descending : (f.z() > 1e-9 ? rising : flat)) += 1;
     }
     INFO("fiber angle " << angle);
     // Triangles straddling the midline take their centroid's side; none lies exactly on it.
+    CHECK(flat == 0);
     if (angle > 0) CHECK(rising == 0);
     else CHECK(descending == 0);
   }

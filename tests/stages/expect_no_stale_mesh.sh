@@ -11,6 +11,7 @@ rm -rf "$out"
 "$sim" --scene "$scene" --model mass_spring --pressure "1000 MPa" --out "$out" --quiet 2>/dev/null
 rc=$?
 [ "$rc" -eq 3 ] || { echo "expected exit 3 from the failing run, got $rc"; exit 1; }
-grep -q '"status": "failed"' "$out/simulate.summary.json" || { echo "the summary does not say failed"; exit 1; }
+# The top-level status (the summary is indented by two spaces per level).
+grep -q '^  "status": "failed"' "$out/simulate.summary.json" || { echo "the summary does not say failed"; exit 1; }
 [ ! -e "$out/closed.sim.vtp" ] || { echo "closed.sim.vtp from the first run is still there"; exit 1; }
 echo "ok: the failed run left its summary and no mesh"

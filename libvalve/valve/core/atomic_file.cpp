@@ -65,6 +65,8 @@ void discard_written_files() {
 
 void keep_written_files_on_failure() { written_files().keep = true; }
 
+void discard_on_failure(const fs::path& path) { written_files().paths.push_back(path); }
+
 void write_file_atomic(const fs::path& path, const std::string& content) {
   write_via_temp(path, [&](const fs::path& tmp) {
     std::ofstream out(tmp, std::ios::binary);

@@ -22,6 +22,9 @@ void write_via_temp(const std::filesystem::path& path,
 /// the failure, and its stages' outputs are theirs.
 void discard_written_files();
 void keep_written_files_on_failure();
+/// Adds `path` to the files discard_written_files() removes, written or not yet (a stage's
+/// summary, so that an earlier run's does not outlive this run's failure).
+void discard_on_failure(const std::filesystem::path& path);
 
 /// Reads a whole file; throws InputError naming the file if it cannot be read.
 std::string read_text_file(const std::filesystem::path& path);

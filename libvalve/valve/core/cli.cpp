@@ -1,6 +1,7 @@
 #include "valve/core/cli.hpp"
 
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cmath>
@@ -112,12 +113,14 @@ StageSummary::StageSummary(std::string stage, fs::path out_dir)
     throw_input_error(out_.string(), "--out", "a directory", "a file that is not one");
   fs::create_directories(out_, ec);
   if (ec) throw_input_error(out_.string(), "--out", "a directory that can be created", ec.message());
-  const fs::path probe = out_ / ".write_probe";
+  const fs::path probe = out_ / (".write_probe" + std::to_string(::getpid()));
   {
     std::ofstream test(probe);
     if (!test) throw_input_error(out_.string(), "--out", "a writable directory", "not writable");
   }
   fs::remove(probe, ec);
+  // An earlier run's summary would otherwise outlive a failure of this one and still say ok.
+  discard_on_failure(out_ / (stage_ + ".summary.json"));
   doc_ = {{"stage", stage_}, {"status", "ok"}, {"inputs", nlohmann::json::array()},
           {"parameters", nlohmann::json::object()}, {"metrics", nlohmann::json::object()}};
 }

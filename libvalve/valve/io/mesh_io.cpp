@@ -86,6 +86,7 @@ class ReadErrorCapture {
     vtkOutputWindow::SetInstance(window_);
     vtkObject::GlobalWarningDisplayOn();
     // VTK 9 also logs errors to stderr itself; the stages report in one line of their own.
+    // Left off for the process, as read_polydata leaves GlobalWarningDisplay off.
     vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   }
   ~ReadErrorCapture() {

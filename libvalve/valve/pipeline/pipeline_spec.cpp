@@ -265,6 +265,22 @@ StepSpec parse_step(const ojson& s, size_t i, const std::vector<SweepVariable>& 
   return step;
 }
 
+// Levenshtein distance (insertions, deletions, substitutions), for near-miss names.
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<size_t> row(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (size_t i = 1; i <= a.size(); ++i) {
+    size_t diagonal = row[0];
+    row[0] = i;
+    for (size_t j = 1; j <= b.size(); ++j) {
+      const size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
 GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariable>& variables,
                         const std::string& file) {
   GatherSpec spec;
@@ -302,11 +318,15 @@ GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariabl
       col.source = ColumnSpec::Source::row;
       col.text = text.substr(4);
     } else {
-      // "sumary:status" would otherwise fill the column with its own text on every row.
+      // "sumary:status" would otherwise fill the column with its own text on every row; a
+      // literal such as "fe:ray" or "http://..." is not near any source's name.
       const size_t colon = text.find(':');
-      if (colon != std::string::npos && colon > 0 && colon + 1 < text.size() && !std::isspace(static_cast<unsigned char>(text[colon + 1])) &&
-          std::all_of(text.begin(), text.begin() + colon, [](char c) { return std::islower(static_cast<unsigned char>(c)) || c == '_'; }))
-        fail(file, key, "a source summary:, row: or file: (or literal text)", "the unknown source \"" + text.substr(0, colon + 1) + "\"");
+      if (colon != std::string::npos && colon > 0 && colon + 1 < text.size()) {
+        const std::string prefix = text.substr(0, colon);
+        for (const std::string known : {"summary", "file", "row"})
+          if (edit_distance(prefix, known) <= (known.size() >= 6 ? 2u : 1u))
+            fail(file, key, "the source " + known + ": (or literal text)", "\"" + prefix + ":\"");
+      }
       check_placeholders(text, run_builtins, variables, file, key);
     }
     spec.columns.push_back(col);

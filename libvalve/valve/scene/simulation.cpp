@@ -185,14 +185,11 @@ std::vector<double> load_steps(const SceneConfig& sc) {
   return loads;
 }
 
-// `spent_seconds`: wall time already used by this closure (a static attempt before the
-// fallback), taken off the scene's limit so that the limit bounds the whole closure.
 SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks,
-                          const std::vector<int>& monitor, double spent_seconds = 0) {
+                          const std::vector<int>& monitor) {
   SimulationResult res;
   Bdf2Options opt = sc.bdf2;
   opt.monitor_nodes = monitor;
-  opt.max_wall_seconds = std::max(opt.max_wall_seconds - spent_seconds, 1e-3);
   Bdf2Integrator integ(sys, opt);
   integ.reset(flatten(mesh.start_positions()));
   if (hooks.on_step) integ.on_accepted = hooks.on_step;
@@ -309,7 +306,7 @@ SimulationResult simulate(const SceneConfig& sc, const TriMesh& input_mesh, Mech
     if (sc.solver == SolverKind::automatic && (res.summary.status != SolverStatus::ok || !res.x.allFinite())) {
       const std::string why = res.summary.reason;
       const SolverSummary first = res.summary;
-      res = run_bdf2(sc, mesh, sys, hooks, monitor, first.wall_seconds);
+      res = run_bdf2(sc, mesh, sys, hooks, monitor);
       res.summary.fallback_from = "static (" + why + ")";
       res.summary.wall_seconds += first.wall_seconds;
     }

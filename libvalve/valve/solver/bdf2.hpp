@@ -71,8 +71,8 @@ struct Bdf2Options {
   int min_steps = 10;                    // never declare convergence earlier
   long max_steps = 200000;
   double max_time = 1e6;                 // ms of simulated time
-  double max_wall_seconds = 600;         // as a fallback after a static attempt (solver
-                                         // "auto"), what remains of it after that attempt
+  double max_wall_seconds = 600;         // this solver's own; with solver "auto" a static
+                                         // attempt before it has its own (statics)
   bool adaptive = true;                  // false: fixed step = initial_step, no doubling
   ErrorEstimate error_estimate = ErrorEstimate::step_doubling;  // the seed's method by default
   LinearSolverType linear_solver = LinearSolverType::automatic;  // see kLargeSystemDofs
