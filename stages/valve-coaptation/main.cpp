@@ -80,7 +80,6 @@ int main(int argc, char** argv) {
     if (leaflets.size() < 2)
       throw_input_error(file.string(), "Leaflet", "a mesh of at least two leaflets", std::to_string(leaflets.size()) + " leaflet id(s)");
     const MatX3 closed = mesh.points;
-    if (!closed.allFinite()) throw_input_error(file.string(), "points", "finite coordinates", "NaN or inf");
     for (const auto& a : extra)
       if (a.name == "Displacement" && !a.per_cell && a.values.rows() == mesh.num_nodes() && a.values.cols() == 3) {
         if (!a.values.allFinite()) throw_input_error(file.string(), "Displacement", "finite values", "NaN or infinity");

@@ -12,7 +12,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <sstream>
 
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/core/cli.hpp"
@@ -27,12 +26,6 @@ using namespace valve;
 namespace fs = std::filesystem;
 
 namespace {
-std::string shown_number(double x) {
-  std::ostringstream o;
-  o << x;
-  return o.str();
-}
-
 double parse_number(const CommandLine& cl, const std::string& flag, double fallback, double lo, double hi) {
   const auto v = cl.get(flag);
   if (!v) return fallback;
@@ -41,7 +34,7 @@ double parse_number(const CommandLine& cl, const std::string& flag, double fallb
   // strtod also reads hexadecimal ("0x20") and "inf"; a flag value is a plain decimal.
   const bool plain = v->find_first_of("xXnN") == std::string::npos;
   if (!plain || end == v->c_str() || *end != '\0' || !(x >= lo && x <= hi))
-    throw InputError("--" + flag + ": expected a number in [" + shown_number(lo) + ", " + shown_number(hi) + "], found \"" +
+    throw InputError("--" + flag + ": expected a number in [" + format_number(lo) + ", " + format_number(hi) + "], found \"" +
                      *v + "\"");
   return x;
 }

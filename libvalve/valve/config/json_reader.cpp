@@ -8,21 +8,7 @@
 
 namespace valve {
 
-json load_json_file(const std::filesystem::path& path) {
-  const std::string text = read_text_file(path);
-  try {
-    return json::parse(text);
-  } catch (const json::parse_error& e) {
-    // Turn the byte offset into a line number: people open files by line.
-    const size_t offset = std::min<size_t>(e.byte, text.size());
-    const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
-    throw InputError(path.string() + ": line " + std::to_string(line) +
-                     ": expected valid JSON, found a syntax error (" + e.what() + ")");
-  } catch (const json::out_of_range& e) {
-    // A number too large for a double (1e999) fails after the syntax check, without a position.
-    throw InputError(path.string() + ": expected numbers a double can hold, found " + e.what());
-  }
-}
+json load_json_file(const std::filesystem::path& path) { return read_json_file<json>(path); }
 
 std::string describe_json(const json& v) {
   std::string dump = v.dump();

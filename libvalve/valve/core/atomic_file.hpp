@@ -1,9 +1,12 @@
 #pragma once
 // Outputs are written to a temporary sibling and renamed into place, so a failed or
 // interrupted stage never leaves a half-written file behind.
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <string>
+
+#include "valve/core/error.hpp"
 
 namespace valve {
 
@@ -28,6 +31,25 @@ void discard_on_failure(const std::filesystem::path& path);
 
 /// Reads a whole file; throws InputError naming the file if it cannot be read.
 std::string read_text_file(const std::filesystem::path& path);
+
+/// Parses a JSON file (nlohmann::json or ordered_json; with // and /* */ comments when
+/// `comments`). Throws InputError naming the file and, for a syntax error, its line.
+template <class Json>
+Json read_json_file(const std::filesystem::path& path, bool comments = false) {
+  const std::string text = read_text_file(path);
+  try {
+    return Json::parse(text, nullptr, true, comments);
+  } catch (const typename Json::parse_error& e) {
+    // Turn the byte offset into a line number: people open files by line.
+    const size_t offset = std::min<size_t>(e.byte, text.size());
+    const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
+    throw InputError(path.string() + ": line " + std::to_string(line) +
+                     ": expected valid JSON, found a syntax error (" + e.what() + ")");
+  } catch (const typename Json::out_of_range& e) {
+    // A number too large for a double (1e999) fails after the syntax check, without a position.
+    throw InputError(path.string() + ": expected numbers a double can hold, found " + e.what());
+  }
+}
 
 /// SHA-256 of a file's bytes as lowercase hex; throws InputError if unreadable.
 std::string sha256_file(const std::filesystem::path& path);

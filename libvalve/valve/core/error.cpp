@@ -1,5 +1,9 @@
 #include "valve/core/error.hpp"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
 namespace valve {
 
 std::string describe_problem(const std::string& where, const std::string& key,
@@ -19,6 +23,22 @@ std::string describe_problem(const std::string& where, const std::string& key,
   for (char& c : msg)
     if (c == '\n' || c == '\r') c = ' ';
   return msg;
+}
+
+std::string format_number(double x) {
+  if (std::isnan(x)) return "nan";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  if (x == std::floor(x) && std::fabs(x) < 1e15) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.0f", x == 0 ? 0.0 : x);  // no "-0"
+    return buf;
+  }
+  char buf[40];
+  for (int p = 1; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  return buf;
 }
 
 void throw_input_error(const std::string& where, const std::string& key,

@@ -29,6 +29,10 @@ class NumericalError : public Error {
 std::string describe_problem(const std::string& where, const std::string& key,
                              const std::string& expected, const std::string& found);
 
+/// Shortest decimal text that reads back as exactly `x` ("45", "0.1", "1e-05"; "nan", "inf"),
+/// for the values messages and tables show.
+std::string format_number(double x);
+
 [[noreturn]] void throw_input_error(const std::string& where, const std::string& key,
                                     const std::string& expected, const std::string& found);
 

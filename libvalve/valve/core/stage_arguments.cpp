@@ -52,13 +52,7 @@ StageArguments::StageArguments(const CommandLine& cl, const std::vector<std::str
     : cl_(cl), program_(cl.program()) {
   if (const auto file = cl.get("config")) {
     config_file_ = *file;
-    try {
-      config_ = nlohmann::json::parse(read_text_file(*file));
-    } catch (const nlohmann::json::parse_error& e) {
-      throw_input_error(*file, "", "valid JSON", e.what());
-    } catch (const nlohmann::json::out_of_range& e) {
-      throw_input_error(*file, "", "numbers a double can hold", e.what());
-    }
+    config_ = read_json_file<nlohmann::json>(*file);
     if (!config_.is_object()) throw_input_error(*file, "", "a JSON object", config_.type_name());
     for (auto it = config_.begin(); it != config_.end(); ++it)
       if (std::find(config_keys.begin(), config_keys.end(), it.key()) == config_keys.end()) {

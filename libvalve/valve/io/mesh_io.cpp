@@ -43,12 +43,6 @@ namespace {
 // the squares and cross products of every geometric query into inf and NaN.
 constexpr double kMaxCoordinateMm = 1e6;
 
-std::string format_number(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
-
 std::string describe_point(const Eigen::RowVector3d& p) {
   return "(" + format_number(p[0]) + ", " + format_number(p[1]) + ", " + format_number(p[2]) + ")";
 }

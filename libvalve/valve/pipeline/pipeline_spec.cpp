@@ -566,21 +566,7 @@ fs::path normalized_dir(const fs::path& dir) {
   return a;
 }
 
-ojson load_pipeline_json(const fs::path& path) {
-  const std::string text = read_text_file(path);
-  try {
-    return ojson::parse(text, nullptr, true, /*ignore_comments=*/true);
-  } catch (const ojson::parse_error& e) {
-    // Turn the byte offset into a line number: people open files by line.
-    const size_t offset = std::min<size_t>(e.byte, text.size());
-    const size_t line = 1 + static_cast<size_t>(std::count(text.begin(), text.begin() + offset, '\n'));
-    throw InputError(path.string() + ": line " + std::to_string(line) +
-                     ": expected valid JSON, found a syntax error (" + e.what() + ")");
-  } catch (const ojson::out_of_range& e) {
-    // A number too large for a double (1e999) fails after the syntax check, without a position.
-    throw InputError(path.string() + ": expected numbers a double can hold, found " + e.what());
-  }
-}
+ojson load_pipeline_json(const fs::path& path) { return read_json_file<ojson>(path, /*comments=*/true); }
 
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir) {
   return parse_pipeline(doc, file, pipeline_dir, {fs::weakly_canonical(normalized_dir(pipeline_dir) / fs::path(file).filename())});
@@ -816,22 +802,6 @@ std::string substitute(const std::string& text, const Bindings& bindings, const 
     out += value_text(*v);
   }
   return out;
-}
-
-std::string format_number(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  if (x == std::floor(x) && std::fabs(x) < 1e15) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.0f", x == 0 ? 0.0 : x);  // no "-0"
-    return buf;
-  }
-  char buf[40];
-  for (int p = 1; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  return buf;
 }
 
 std::string value_text(const ojson& v) {

@@ -111,6 +111,8 @@
 #include <utility>
 #include <vector>
 
+#include "valve/core/error.hpp"  // format_number
+
 namespace valve {
 
 /// Pipeline files keep their key order (variables, columns): ordered JSON throughout.
@@ -266,8 +268,6 @@ std::string value_text(const ojson& value);
 /// `dir` absolute and normalized, without a trailing separator: what ${out_dir} gives.
 std::filesystem::path normalized_dir(const std::filesystem::path& dir);
 
-/// Shortest decimal text that reads back as exactly `x` ("45", "0.1", "1e-05").
-std::string format_number(double x);
 
 /// The value at a dot path ("metrics.leaflets.0.free_edge_mm"; empty path: `root` itself),
 /// or nullptr when any part is missing.

@@ -295,10 +295,8 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   resolve_required_stages(spec, default_stage_dirs(options.stage_dirs));
   check_required_folders(spec, out);
 
-  std::error_code ec;
-  if (fs::exists(out, ec) && !fs::is_directory(out, ec))
-    throw_input_error("valve-pipeline", "--out", "a folder", "the file " + out.string());
   StageSummary summary("pipeline", out);  // makes the folder, or refuses it (exit 2)
+  std::error_code ec;
   if (fs::is_regular_file(spec.file, ec)) summary.add_input("pipeline", spec.file);
   summary.parameters() = nlohmann::json(spec.source);
 
