@@ -16,7 +16,11 @@
 // Writes DIR/NAME.nrrd (or .mha, .nii.gz, a DICOM directory), the ground-truth mid-surface
 // DIR/NAME.truth.vtp (TTV: with the deck's element fiber directions), the chordae
 // DIR/NAME.chordae.json (mitral: the phantom's; TTV: the deck's trusses, papillary tips = held
-// truss nodes, see truss_chordae) and phantom.summary.json.
+// truss nodes, each truss with its section area and its group's law from the deck's
+// *Material, see truss_chordae), for TTV DIR/NAME.leaflet_materials.json (each leaflet's law
+// and thickness read from the deck's *Shell Section and *Material, for a scene's
+// "leaflet_materials"; a material kind valve does not model is refused, exit 2) and
+// phantom.summary.json.
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cstdio>
@@ -48,6 +52,7 @@ struct PhantomGeometry {
   double chord_diameter = 0.5;
   std::vector<PapillaryMuscle> papillary;
   nlohmann::json description;  // for the summary
+  nlohmann::json leaflet_materials;  // TTV: the deck's leaflet laws in the scene's leaflet_materials form
 };
 
 PhantomGeometry mitral_geometry(StageArguments& args, double spacing, std::uint64_t seed, bool chordae,
@@ -115,7 +120,8 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae, std::optional
   g.leaflets = shell_mesh(model, "Annular_Nodes", "Free_Edge_Nodes", &model_rows);
   g.thickness = args.length_mm("thickness", 0.65, 0.05, 10);
   double tip_motion = 0;
-  if (chordae && !line_elements(model).empty()) *network = truss_chordae(model, model_rows, g.leaflets, &tip_motion);
+  if (chordae && !line_elements(model).empty()) *network = truss_chordae(model, model_rows, g.leaflets, inp, &tip_motion);
+  g.leaflet_materials = leaflet_materials_json(model, inp);
   g.chord_diameter = args.length_mm("chord-diameter", 0.65, 0.05, 5);
   const auto lines = line_elements(model);
   if (chordae)
@@ -228,6 +234,8 @@ int main(int argc, char** argv) {
     }
     write_mesh(out / (name + ".truth.vtp"), ph.leaflets);
     if (network) write_file_atomic(out / (name + ".chordae.json"), to_json(*network).dump(1) + "\n");
+    const bool has_materials = ph.leaflet_materials.is_array() && !ph.leaflet_materials.empty();
+    if (has_materials) write_file_atomic(out / (name + ".leaflet_materials.json"), ph.leaflet_materials.dump(1) + "\n");
     progress.update(1.0, "written");
 
     StageSummary summary("phantom", out);
@@ -250,6 +258,7 @@ int main(int argc, char** argv) {
     summary.metrics()["origin_mm"] = {grid.origin.x(), grid.origin.y(), grid.origin.z()};
     summary.metrics()["truth_triangles"] = ph.leaflets.num_triangles();
     if (network) summary.metrics()["chordae_file"] = name + ".chordae.json";
+    if (has_materials) summary.metrics()["leaflet_materials_file"] = name + ".leaflet_materials.json";
     summary.write();
     if (!cl.has("quiet"))
       std::printf("valve-phantom: %d x %d x %d voxels at %.3g mm -> %s\n", grid.size[0], grid.size[1], grid.size[2], spacing,

@@ -40,7 +40,7 @@ TEST_CASE("attachment appends tips and branch points, scales rest lengths, lumps
   ChordaeNetwork n = small_network();
   snap_insertions(n, grid.points, 0.5, "c.json");
   n.segments[1].scale = 0.9;  // a shortened chord
-  const ChordaeAttachment a = attach_chordae(n, grid.num_nodes(), ChordMaterial{40.0, 1e-3});
+  const ChordaeAttachment a = attach_chordae(n, grid.num_nodes(), ChordMaterial{std::make_shared<LinearRodLaw>(40.0), {}, 0.0, 1e-3});
   REQUIRE(a.extra_points.rows() == 2);
   CHECK(a.point_node == std::vector<int>{9, 10, 4, 8});
   CHECK(a.extra_roles[0] == NodeRole::fixed);
@@ -49,7 +49,8 @@ TEST_CASE("attachment appends tips and branch points, scales rest lengths, lumps
   CHECK(a.rods[0].rest_length == Approx(10.0));
   CHECK(a.rods[1].rest_length == Approx(0.9 * 10.0));
   CHECK(a.rods[2].rest_length == Approx(std::sqrt(1 + 1 + 100.0)));
-  CHECK(a.rods[0].axial_stiffness == Approx(40.0 * M_PI * 0.25 / 4));
+  CHECK(a.rods[0].area == Approx(M_PI * 0.25 / 4));
+  CHECK(a.rods[0].law->name() == "linear");
   // Branch point: half of each of its three chords' mass, ρ A L / 2.
   const double area = M_PI * 0.25 / 4;
   CHECK(a.extra_mass[1] == Approx(0.5 * 1e-3 * area * (10.0 + 10.0 + std::sqrt(102.0))));
@@ -57,4 +58,28 @@ TEST_CASE("attachment appends tips and branch points, scales rest lengths, lumps
   CHECK(m.num_nodes() == 11);
   CHECK(m.num_triangles() == grid.num_triangles());
   CHECK(m.roles[9] == NodeRole::fixed);
+}
+
+TEST_CASE("a segment naming a chord law takes it and its own section; the rest take the default", "[chordae]") {
+  const TriMesh grid = test::grid_mesh(2.0);
+  ChordaeNetwork n = small_network();
+  snap_insertions(n, grid.points, 0.5, "c.json");
+  n.segments[1].material = "Anterior_Chordae";
+  n.segments[1].area = 0.356;
+  n.segments[2].area = 0.3;  // its own section, with the default law
+  OgdenParameters p;
+  p.mu = {18.9, 0, 0};
+  p.alpha = {98.3, 1, 1};
+  ChordMaterial material;
+  material.named_laws["Anterior_Chordae"] = std::make_shared<OgdenRodLaw>(p);
+  const ChordaeAttachment a = attach_chordae(n, grid.num_nodes(), material);
+  CHECK(a.rods[0].law->name() == "linear");
+  CHECK(a.rods[0].area == Approx(M_PI * 0.25 / 4));  // the network's 0.5 mm diameter
+  CHECK(a.rods[1].law->name() == "ogden");
+  CHECK(a.rods[1].area == Approx(0.356));
+  CHECK(a.rods[2].law->name() == "linear");
+  CHECK(a.rods[2].area == Approx(0.3));
+  material.diameter = 0.6;  // the scene's diameter sets every section
+  const ChordaeAttachment b = attach_chordae(n, grid.num_nodes(), material);
+  for (const Rod& r : b.rods) CHECK(r.area == Approx(M_PI * 0.36 / 4));
 }

@@ -42,8 +42,13 @@ TEST_CASE("an Abaqus deck gives nodes, shells as triangles, trusses and node set
   CHECK(mesh.fiber.row(2).y() == Approx(1.0));
   CHECK(mesh.fiber.row(3).y() == Approx(1.0));
   CHECK(mesh.fiber.row(0).x() == Approx(1.0));
-  REQUIRE(m.section_areas.size() == 1);
-  CHECK(m.section_areas[0] == 0.25);
+  REQUIRE(m.sections.size() == 3);
+  CHECK(m.sections[0].kind == "SOLID");
+  CHECK(m.sections[0].value == 0.25);
+  CHECK(m.sections[1].kind == "SHELL");
+  CHECK(m.sections[1].material == "VUANISO_ISO_A");
+  CHECK(m.sections[1].value == 0.65);
+  CHECK(m.element_sets.at("CHORDAE") == std::vector<int>{3});
   // Nodes 4-6 by their set (ENCASTRE), node 2's symmetry condition and node 3's rotations
   // hold no full translation and are not recorded.
   REQUIRE(m.boundary.size() == 6);
@@ -60,6 +65,56 @@ TEST_CASE("an Abaqus deck gives nodes, shells as triangles, trusses and node set
   REQUIRE(lines.size() == 1);
   CHECK(m.node_ids[lines[0].first] == 10);
   CHECK(m.node_ids[lines[0].second] == 1);
+}
+
+TEST_CASE("a deck's materials become valve's laws with the subroutine's property order", "[io][abaqus]") {
+  const AbaqusModel m = read_abaqus_inp(VALVE_TEST_DATA_DIR "/two_quads.inp");
+  REQUIRE(m.materials.size() == 3);
+  CHECK(m.materials.at("CHORDAE").options.size() == 2);  // *Density, *Hyperelastic
+
+  const nlohmann::json leaflets = leaflet_materials_json(m, "two_quads.inp");
+  REQUIRE(leaflets.size() == 2);
+  CHECK(leaflets[0]["leaflets"] == nlohmann::json{0});
+  CHECK(leaflets[0]["thickness"] == "0.65 mm");
+  const nlohmann::json& iso = leaflets[0]["material"];
+  CHECK(iso["law"] == "iso_exponential");  // VUANISO_ISO: C0, D, C1, C2
+  CHECK(iso["C0"] == "0.001 MPa");
+  CHECK(iso["D"] == "20.06689 1/MPa");
+  CHECK(iso["C1"] == "0.000124 MPa");
+  CHECK(iso["C2"].get<double>() == 4.568202);
+  CHECK(iso["density"] == "0.001 g/mm^3");  // 1e-9 tonne/mm³
+  CHECK(iso["source"].get<std::string>().find("VUANISO_ISO_A") != std::string::npos);
+  const nlohmann::json& hgo = leaflets[1]["material"];
+  CHECK(hgo["law"] == "hgo");  // VUANISO_HGO: C10, D, k1, k2, kappa, C01 over two data lines
+  CHECK(hgo["C10"] == "0.002 MPa");
+  CHECK(hgo["D"] == "10 1/MPa");
+  CHECK(hgo["k1"] == "0.0003 MPa");
+  CHECK(hgo["k2"].get<double>() == 12.0);
+  CHECK(hgo["kappa"].get<double>() == 0.05);
+  CHECK(hgo["C01"].get<double>() == 15.0);
+
+  std::vector<int> rows;
+  const TriMesh mesh = shell_mesh(m, "Annular_Nodes", "Free_Edge_Nodes", &rows);
+  const ChordaeNetwork net = truss_chordae(m, rows, mesh, "two_quads.inp");
+  REQUIRE(net.segments.size() == 1);
+  CHECK(net.segments[0].material == "Chordae");
+  CHECK(net.segments[0].area == 0.25);
+  const nlohmann::json& ogden = net.materials.at("Chordae");
+  CHECK(ogden["law"] == "ogden");  // μ1, α1, μ2, α2, D1, D2
+  CHECK(ogden["mu"] == nlohmann::json{"1.5 MPa", "0.5 MPa"});
+  CHECK(ogden["alpha"] == nlohmann::json{20.0, 2.0});
+  CHECK(ogden["D"] == nlohmann::json{"0.0001 1/MPa", "0 1/MPa"});
+}
+
+TEST_CASE("a deck material valve does not model is refused by name", "[io][abaqus]") {
+  const AbaqusModel leaflet = read_abaqus_inp(VALVE_TEST_DATA_DIR "/unmodelled_leaflet_material.inp");
+  CHECK_THROWS_WITH(leaflet_materials_json(leaflet, "deck.inp"),
+                    Catch::Contains("deck.inp") && Catch::Contains("VUANISO_ISO_A") && Catch::Contains("MOONEY-RIVLIN"));
+  const AbaqusModel chord = read_abaqus_inp(VALVE_TEST_DATA_DIR "/unmodelled_chord_material.inp");
+  std::vector<int> rows;
+  const TriMesh mesh = shell_mesh(chord, "Annular_Nodes", "Free_Edge_Nodes", &rows);
+  CHECK_THROWS_WITH(truss_chordae(chord, rows, mesh, "deck.inp"),
+                    Catch::Contains("name=Chordae") && Catch::Contains("ARRUDA-BOYCE"));
 }
 
 TEST_CASE("a broken deck names the file and line", "[io][abaqus]") {

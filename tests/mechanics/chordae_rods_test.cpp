@@ -1,6 +1,6 @@
 // Tension-only chordae rods (seed 5.2.2, Table 5.1): the force of a stretched rod against
 // Hooke's law, nothing when slack, the Jacobian against finite differences and the force
-// against the energy's gradient.
+// against the energy's gradient, for the linear and the Ogden law.
 #include <catch2/catch.hpp>
 
 #include "support/test_meshes.hpp"
@@ -9,12 +9,22 @@
 using namespace valve;
 
 namespace {
-// EA of the seed's chord: E = 40 MPa, D = 0.5 mm: 40 · π · 0.5² / 4 = 7.854 N.
-const double kEA = 40.0 * M_PI * 0.5 * 0.5 / 4;
+// The seed's chord: E = 40 MPa, D = 0.5 mm, so EA = 40 · π · 0.5² / 4 = 7.854 N.
+const double kArea = M_PI * 0.5 * 0.5 / 4;
+const double kEA = 40.0 * kArea;
+const auto kLinear = std::make_shared<LinearRodLaw>(40.0);
+Rod linear_rod(int a, int b, double rest_length) { return Rod{a, b, rest_length, kArea, kLinear}; }
+// The Texas TriValve deck's Anterior_Chordae (*Hyperelastic, OGDEN, N=3), incompressible.
+std::shared_ptr<const RodLaw> deck_ogden() {
+  OgdenParameters p;
+  p.mu = {18.884147787615671, 22.682992286286954, 19.502933935159177};
+  p.alpha = {98.253655062498183, 98.251894443391549, 98.253228660027887};
+  return std::make_shared<OgdenRodLaw>(p);
+}
 }
 
 TEST_CASE("a stretched chord pulls with EA (L - L0) / L0 along itself; a slack one does nothing", "[chordae]") {
-  ChordaeTerm term({Rod{0, 1, 10.0, kEA}});
+  ChordaeTerm term({linear_rod(0, 1, 10.0)});
   VecX x(6), v = VecX::Zero(6), f = VecX::Zero(6);
   const Vec3 dir = Vec3(1, 2, 2) / 3.0;
   node3(x, 0) = Vec3(1, -1, 2);
@@ -35,7 +45,9 @@ TEST_CASE("a stretched chord pulls with EA (L - L0) / L0 along itself; a slack o
 
 TEST_CASE("chordae Jacobian matches finite differences and force is minus the energy gradient", "[chordae]") {
   // A branch point (node 1) between a tip (0) and two insertions (2, 3); one rod slack.
-  std::vector<Rod> rods{{0, 1, 8.0, kEA}, {1, 2, 3.0, kEA}, {1, 3, 5.0, kEA}};
+  const auto ogden = deck_ogden();
+  // The Ogden rod stretched 1.1 %, where the deck's law is already steep (α ≈ 98).
+  std::vector<Rod> rods{linear_rod(0, 1, 8.0), Rod{1, 2, 3.30, 0.356, ogden}, linear_rod(1, 3, 5.0)};
   ChordaeTerm term(rods);
   VecX x(12), v = VecX::Zero(12);
   x << 0, 0, -20, 0.3, 0.2, -11.5, 2.5, 0.4, -9.0, -1.0, 0.5, -9.5;
@@ -49,4 +61,10 @@ TEST_CASE("chordae Jacobian matches finite differences and force is minus the en
   term.add(State{x, v, 1, 0}, f, nullptr, nullptr);
   const VecX g = test::numeric_energy_force(term, x, v, 1, 1e-6);
   for (int i = 0; i < x.size(); ++i) CHECK(f[i] == Approx(g[i]).margin(1e-6));
+}
+
+TEST_CASE("a chord with a bad law, area or rest length is refused", "[chordae]") {
+  CHECK_THROWS(ChordaeTerm({Rod{0, 1, 10.0, kArea, nullptr}}));
+  CHECK_THROWS(ChordaeTerm({Rod{0, 1, 10.0, 0.0, kLinear}}));
+  CHECK_THROWS(ChordaeTerm({Rod{0, 1, 0.0, kArea, kLinear}}));
 }

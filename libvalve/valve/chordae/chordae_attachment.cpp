@@ -45,16 +45,18 @@ ChordaeAttachment attach_chordae(const ChordaeNetwork& network, int mesh_nodes, 
   a.extra_points.resize(static_cast<int>(extra.size()), 3);
   for (std::size_t k = 0; k < extra.size(); ++k) a.extra_points.row(k) = extra[k].transpose();
   a.extra_mass.assign(extra.size(), 0.0);
-  const double area = M_PI * network.diameter * network.diameter / 4;
+  auto disk = [](double d) { return M_PI * d * d / 4; };
   for (int s = 0; s < static_cast<int>(network.segments.size()); ++s) {
     const ChordSegment& seg = network.segments[s];
     Rod rod;
     rod.a = a.point_node[seg.from];
     rod.b = a.point_node[seg.to];
     rod.rest_length = network.rest_length(s);
-    rod.axial_stiffness = material.youngs_modulus * area;
+    rod.area = material.diameter > 0 ? disk(material.diameter) : seg.area > 0 ? seg.area : disk(network.diameter);
+    const auto named = material.named_laws.find(seg.material);
+    rod.law = named != material.named_laws.end() ? named->second : material.default_law;
     a.rods.push_back(rod);
-    const double half_mass = 0.5 * material.density * area * (network.points[seg.from].position - network.points[seg.to].position).norm();
+    const double half_mass = 0.5 * material.density * rod.area * (network.points[seg.from].position - network.points[seg.to].position).norm();
     for (int node : {rod.a, rod.b})
       if (node >= mesh_nodes) a.extra_mass[node - mesh_nodes] += half_mass;
   }

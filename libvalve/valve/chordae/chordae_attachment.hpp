@@ -3,6 +3,8 @@
 // the mesh nodes they are snapped to, papillary tips and branch points become extra nodes
 // appended after the mesh nodes (tips fixed, branch points free, with the chords' mass),
 // and every segment becomes a tension-only rod.
+#include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,9 +19,14 @@ namespace valve {
 /// and name) and the distance found.
 void snap_insertions(ChordaeNetwork& network, const MatX3& mesh_points, double tolerance, const std::string& file);
 
+/// The laws the rods take: a segment whose material names one of `named_laws` takes that law
+/// and its own section (area_mm2, else the network's diameter); every other segment takes
+/// `default_law` (seed Table 5.1: linear, E = 40 MPa). `diameter` > 0 sets every section.
 struct ChordMaterial {
-  double youngs_modulus = 40.0;  // MPa (seed Table 5.1)
-  double density = 1.06e-3;      // g/mm³, as the leaflets
+  std::shared_ptr<const RodLaw> default_law = std::make_shared<LinearRodLaw>(40.0);
+  std::map<std::string, std::shared_ptr<const RodLaw>> named_laws;
+  double diameter = 0;       // mm; 0 = the segment's area_mm2, else the network's diameter
+  double density = 1.06e-3;  // g/mm³, as the leaflets
 };
 
 struct ChordaeAttachment {
@@ -31,8 +38,9 @@ struct ChordaeAttachment {
   std::vector<Rod> rods;           // one per segment, in network order
 };
 
-/// Builds the rods (EA = E π D² / 4, rest length from ChordaeNetwork::rest_length) for a
-/// network whose insertions are snapped to a mesh of `mesh_nodes` nodes.
+/// Builds the rods (law and section as ChordMaterial says, rest length from
+/// ChordaeNetwork::rest_length) for a network whose insertions are snapped to a mesh of
+/// `mesh_nodes` nodes.
 ChordaeAttachment attach_chordae(const ChordaeNetwork& network, int mesh_nodes, const ChordMaterial& material);
 
 /// The mesh with the attachment's extra nodes appended (in no triangle).

@@ -8,6 +8,7 @@
 #include <queue>
 
 #include "valve/config/json_reader.hpp"
+#include "valve/config/material_config.hpp"
 #include "valve/core/error.hpp"
 
 namespace valve {
@@ -58,9 +59,13 @@ nlohmann::json to_json(const ChordaeNetwork& network) {
     nlohmann::json j = {{"from", s.from}, {"to", s.to}, {"type", to_string(s.type)}};
     if (s.scale != 1.0) j["scale"] = s.scale;
     if (s.rest_length > 0) j["rest_length_mm"] = s.rest_length;
+    if (!s.material.empty()) j["material"] = s.material;
+    if (s.area > 0) j["area_mm2"] = s.area;
     segments.push_back(j);
   }
-  return {{"diameter_mm", network.diameter}, {"points", points}, {"segments", segments}};
+  nlohmann::json out = {{"diameter_mm", network.diameter}, {"points", points}, {"segments", segments}};
+  if (!network.materials.empty()) out["materials"] = network.materials;
+  return out;
 }
 
 ChordaeNetwork chords_of_types(const ChordaeNetwork& in, const std::vector<std::string>& types) {
@@ -100,6 +105,7 @@ ChordaeNetwork chords_of_types(const ChordaeNetwork& in, const std::vector<std::
   }
   ChordaeNetwork out;
   out.diameter = in.diameter;
+  out.materials = in.materials;
   // Points keep their order in the file, so that per-tip lists (the scene's papillary_tips)
   // still match the tips that remain.
   std::vector<int> index(n, -1);
@@ -123,6 +129,19 @@ ChordaeNetwork read_chordae_json(const nlohmann::json& doc, const std::string& f
   net.diameter = root.number("diameter_mm", 0.5, 1e-3, 10);
   const json& points = root.raw("points");
   const json& segments = root.raw("segments");
+  if (root.has("materials")) {
+    const json& materials = root.raw("materials");
+    if (!materials.is_object()) root.fail("materials", "an object of chord laws by name", describe_json(materials));
+    for (const auto& [name, law] : materials.items()) {
+      if (!law.is_object()) root.fail("materials." + name, "a chord law object", describe_json(law));
+      JsonReader r(law, file, "materials." + name);
+      parse_rod_law(r);  // checked here, so that a file with a bad law is refused where it is read
+      r.string("name", "");
+      r.string("source", "");
+      r.finish();
+      net.materials[name] = law;
+    }
+  }
   if (!points.is_array() || points.empty()) root.fail("points", "a non-empty list of points", points.dump().substr(0, 40));
   if (!segments.is_array() || segments.empty()) root.fail("segments", "a non-empty list of segments", segments.dump().substr(0, 40));
   root.finish();
@@ -158,6 +177,10 @@ ChordaeNetwork read_chordae_json(const nlohmann::json& doc, const std::string& f
     s.type = type == "primary" ? ChordType::primary : type == "secondary" ? ChordType::secondary : ChordType::strut;
     s.scale = r.number("scale", 1.0, 0.2, 5.0);
     s.rest_length = r.number("rest_length_mm", 0.0, 0.0, 1000.0);
+    s.material = r.string("material", "");
+    if (!s.material.empty() && !net.materials.count(s.material))
+      r.fail("material", "a name listed under \"materials\"", "\"" + s.material + "\"");
+    s.area = r.number("area_mm2", 0.0, 0.0, 100.0);
     r.finish();
     const double length = (net.points[s.from].position - net.points[s.to].position).norm();
     if (s.from == s.to || length < 1e-6)

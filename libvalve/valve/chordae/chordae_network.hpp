@@ -11,9 +11,13 @@
 //    "segments": [{"from": i, "to": j, "type": "primary"|"secondary"|"strut",
 //                  "scale": 1.0 (rest length factor, < 1 shortens a chord as a repair does),
 //                  "rest_length_mm": L0 (optional: the length at scale 1; default: the
-//                                    open-geometry length)}, ...]}
+//                                    open-geometry length),
+//                  "material": "NAME" (optional: a key of "materials"),
+//                  "area_mm2": A0 (optional: the section; default: from diameter_mm)}, ...],
+//    "materials": {"NAME": a chord law (config/material_config.hpp parse_rod_law), ...}}
 // The rest length is scale × L0, so a scale applied later (a repair, the scene's
 // chordae.rest_length_scale) acts on files that carry their rest lengths.
+#include <map>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -37,12 +41,15 @@ struct ChordSegment {
   ChordType type = ChordType::primary;
   double scale = 1.0;        // rest length factor (chord shortening)
   double rest_length = 0.0;  // mm at scale 1; 0 = not set (the open-geometry length)
+  std::string material;      // a key of ChordaeNetwork::materials; "" = the scene's chord law
+  double area = 0.0;         // mm²; 0 = not set (from the network's diameter)
 };
 
 struct ChordaeNetwork {
   std::vector<ChordPoint> points;
   std::vector<ChordSegment> segments;
   double diameter = 0.5;  // mm (seed Table 5.1)
+  std::map<std::string, nlohmann::json> materials;  // chord laws by name, as in the file
 
   int count(ChordType type) const;
   int count(ChordPointKind kind) const;

@@ -207,9 +207,11 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     JsonReader c = r.object("chordae");
     ChordaeConfig cc;
     cc.file = resolve(base_dir, c.string("file"));
+    cc.law = c.choice("law", {"file", "linear"}, std::string("file")) == "file" ? ChordaeConfig::Law::file
+                                                                                : ChordaeConfig::Law::linear;
     cc.youngs_modulus = c.quantity("youngs_modulus", Dimension::pressure, std::string("40 MPa"), 1e-6, 1e6);
     if (c.has("diameter")) cc.diameter = c.quantity("diameter", Dimension::length, std::nullopt, 0.0, 10);
-    else c.record("diameter", "each chord's diameter_mm from the chordae file");
+    else c.record("diameter", "each chord's area_mm2, else the chordae file's diameter_mm");
     cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, std::string("1 mm"), 0.0, 100);
     cc.rest_length_scale = c.number("rest_length_scale", 1.0, 0.2, 5.0);
     cc.types = c.string_list("types", std::vector<std::string>{"primary", "secondary", "strut"});
@@ -239,27 +241,44 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     sc.annulus_motion = ac;
   }
   if (r.has("leaflet_materials")) {
-    const json& list = r.raw("leaflet_materials");
-    if (!list.is_array()) r.fail("leaflet_materials", "a list of {leaflets, material, thickness}", describe_json(list));
+    // The list inline, or the path of a JSON file holding it (valve-phantom ttv writes the
+    // deck's leaflet laws so); paths inside a file are taken from its folder.
+    json from_file;
+    std::string list_file = file;
+    fs::path list_dir = base_dir;
+    const json* list_ptr = &r.raw("leaflet_materials");
+    if (list_ptr->is_string()) {
+      const fs::path path = resolve(base_dir, list_ptr->get<std::string>());
+      from_file = load_json_file(path);
+      list_file = path.string();
+      list_dir = path.parent_path();
+      list_ptr = &from_file;
+    }
+    const json& list = *list_ptr;
+    const std::string prefix = list_file == file ? "leaflet_materials" : "";
+    if (!list.is_array())
+      throw_input_error(list_file, prefix.empty() ? "(top level)" : prefix, "a list of {leaflets, material, thickness}",
+                        describe_json(list));
     json used_list = json::array();
     for (size_t k = 0; k < list.size(); ++k) {
-      const std::string key = "leaflet_materials[" + std::to_string(k) + "]";
-      if (!list[k].is_object()) r.fail(key, "an object {leaflets, material, thickness}", describe_json(list[k]));
-      JsonReader e(list[k], file, key + ".");
+      const std::string key = prefix + "[" + std::to_string(k) + "]";
+      if (!list[k].is_object()) throw_input_error(list_file, key, "an object {leaflets, material, thickness}", describe_json(list[k]));
+      JsonReader e(list[k], list_file, key);
       LeafletMaterialConfig lm;
       lm.leaflets = e.integer_list("leaflets", std::nullopt);
       if (lm.leaflets.empty()) e.fail("leaflets", "a non-empty list of leaflet indices", "[]");
       json used_material;
       if (!e.has("material")) e.fail("material", "a preset name or a material object", "nothing");
-      lm.material = load_material(e.raw("material"), file, key + ".material", base_dir, &used_material);
+      lm.material = load_material(e.raw("material"), list_file, key + ".material", list_dir, &used_material);
       e.record("material", used_material);
       lm.thickness = e.quantity("thickness", Dimension::length,
-                                lm.material.thickness ? std::optional<std::string>(std::to_string(*lm.material.thickness) + " mm")
-                                                      : std::optional<std::string>(std::to_string(sc.thickness) + " mm"),
+                                lm.material.thickness ? std::optional<std::string>(format_number(*lm.material.thickness) + " mm")
+                                                      : std::optional<std::string>(format_number(sc.thickness) + " mm"),
                                 1e-6, 100);
       used_list.push_back(e.finish());
       sc.leaflet_materials.push_back(std::move(lm));
     }
+    if (list_file != file) used_list = json{{"file", list_file}, {"list", used_list}};
     r.record("leaflet_materials", used_list);
   }
   {

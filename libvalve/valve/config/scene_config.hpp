@@ -80,8 +80,11 @@ struct BendingConfig {
 /// closed-state positions given in network order).
 struct ChordaeConfig {
   std::filesystem::path file;
-  double youngs_modulus = 40.0;  // MPa (Table 5.1)
-  double diameter = 0;           // mm; 0 = the file's diameter_mm
+  /// file: each segment's own law and section where the chordae file gives them (e.g. the
+  /// Texas TriValve deck's Ogden laws), linear elsewhere; linear: every chord linear.
+  enum class Law { file, linear } law = Law::file;
+  double youngs_modulus = 40.0;  // MPa (Table 5.1), the linear law
+  double diameter = 0;           // mm; 0 = each segment's area_mm2, else the file's diameter_mm
   double snap_tolerance = 1.0;   // mm, for insertions not yet snapped to this mesh
   double rest_length_scale = 1.0;  // every chord's rest length × this (sensitivity, repairs)
   std::vector<std::string> types{"primary", "secondary", "strut"};  // chord types kept

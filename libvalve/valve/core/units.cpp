@@ -28,6 +28,7 @@ const std::vector<UnitFactor>& table(Dimension d) {
   static const std::vector<UnitFactor> mass{{"g", 1.0}, {"kg", 1e3}, {"mg", 1e-3}};
   static const std::vector<UnitFactor> rate{{"1/ms", 1.0}, {"1/s", 1e-3}};
   static const std::vector<UnitFactor> damping{{"N*ms/mm", 1.0}, {"N*s/m", 1.0}, {"kg/s", 1.0}};
+  static const std::vector<UnitFactor> compliance{{"1/MPa", 1.0}, {"1/kPa", 1e3}, {"1/Pa", 1e6}};
   switch (d) {
     case Dimension::length: return length;
     case Dimension::pressure: return pressure;
@@ -38,6 +39,7 @@ const std::vector<UnitFactor>& table(Dimension d) {
     case Dimension::mass: return mass;
     case Dimension::rate: return rate;
     case Dimension::damping: return damping;
+    case Dimension::compliance: return compliance;
   }
   return length;
 }
@@ -62,6 +64,7 @@ std::string to_string(Dimension d) {
     case Dimension::mass: return "mass";
     case Dimension::rate: return "rate";
     case Dimension::damping: return "damping";
+    case Dimension::compliance: return "compliance";
   }
   return "?";
 }

@@ -20,6 +20,7 @@ enum class Dimension {
   mass,
   rate,       // 1/time
   damping,    // force per velocity
+  compliance, // 1/pressure (Abaqus's bulk compliance D)
 };
 
 std::string to_string(Dimension d);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 
@@ -53,8 +54,9 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
   if (!in) throw_input_error(path.string(), "", "a readable Abaqus .inp file", "nothing there");
   AbaqusModel m;
   std::vector<Vec3> points;
-  enum class Block { none, node, element, nset, distribution, solid_section, boundary } block = Block::none;
-  std::string nset;
+  enum class Block { none, node, element, nset, elset, distribution, section, material_option, boundary } block = Block::none;
+  std::string nset, elset;
+  AbaqusModel::Material* material = nullptr;  // the *Material whose options follow
   bool generate = false;
   std::string line;
   int number = 0;
@@ -91,6 +93,20 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       const auto words = split_commas(t);
       const std::string keyword = upper(words[0]);
       block = Block::none;
+      // A material's options follow its *Material line; any other keyword ends it.
+      static const std::vector<std::string> kMaterialOptions{
+          "*DENSITY", "*ELASTIC", "*HYPERELASTIC", "*ANISOTROPIC HYPERELASTIC", "*HYPERFOAM", "*VISCOELASTIC",
+          "*PLASTIC", "*USER MATERIAL", "*DEPVAR", "*TRANSVERSE SHEAR", "*DAMPING", "*EXPANSION", "*MULLINS EFFECT"};
+      if (material && std::find(kMaterialOptions.begin(), kMaterialOptions.end(), keyword) != kMaterialOptions.end()) {
+        AbaqusModel::MaterialOption option;
+        option.keyword = keyword;
+        for (std::size_t i = 1; i < words.size(); ++i) option.words.push_back(upper(words[i]));
+        option.line = number;
+        material->options.push_back(option);
+        block = Block::material_option;
+        continue;
+      }
+      material = nullptr;
       if (keyword == "*NODE") {
         block = Block::node;
         const std::string set = upper(parameter(words, "NSET"));
@@ -99,15 +115,29 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       } else if (keyword == "*ELEMENT") {
         block = Block::element;
         m.blocks.push_back({upper(parameter(words, "TYPE")), parameter(words, "ELSET"), {}, {}});
+        elset = upper(parameter(words, "ELSET"));
       } else if (keyword == "*NSET") {
         block = Block::nset;
         nset = upper(parameter(words, "NSET"));
         generate = has_word(words, "GENERATE");
         m.node_sets[nset];
+      } else if (keyword == "*ELSET") {
+        block = Block::elset;
+        elset = upper(parameter(words, "ELSET"));
+        generate = has_word(words, "GENERATE");
+        m.element_sets[elset];
       } else if (keyword == "*DISTRIBUTION" && upper(parameter(words, "LOCATION")) == "ELEMENT") {
         block = Block::distribution;
-      } else if (keyword == "*SOLID SECTION") {
-        block = Block::solid_section;
+      } else if (keyword == "*SOLID SECTION" || keyword == "*SHELL SECTION") {
+        block = Block::section;
+        m.sections.push_back({keyword == "*SHELL SECTION" ? "SHELL" : "SOLID", parameter(words, "ELSET"),
+                              parameter(words, "MATERIAL"), 0.0});
+      } else if (keyword == "*MATERIAL") {
+        const std::string name = parameter(words, "NAME");
+        if (name.empty()) fail("*Material, name=NAME");
+        material = &m.materials[upper(name)];
+        material->name = name;
+        material->line = number;
       } else if (keyword == "*BOUNDARY") {
         block = Block::boundary;
       }
@@ -125,6 +155,7 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       if (f.size() < 3) fail("an element line: id, node ids");
       auto& b = m.blocks.back();
       b.ids.push_back(to_int(f[0]));
+      if (!elset.empty()) m.element_sets[elset].push_back(b.ids.back());
       std::vector<int> nodes;
       for (std::size_t i = 1; i < f.size(); ++i) nodes.push_back(to_int(f[i]));
       b.nodes.push_back(std::move(nodes));
@@ -132,9 +163,12 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
       if (!f.empty() && f[0].empty()) continue;  // ", a, b": the default, for elements not listed
       if (f.size() < 4) fail("a distribution line: element id, a1, a2, a3[, b1, b2, b3]");
       m.element_direction[to_int(f[0])] = Vec3(to_double(f[1]), to_double(f[2]), to_double(f[3]));
-    } else if (block == Block::solid_section) {
-      if (!f.empty() && !f[0].empty()) m.section_areas.push_back(to_double(f[0]));
+    } else if (block == Block::section) {
+      if (!f.empty() && !f[0].empty()) m.sections.back().value = to_double(f[0]);
       block = Block::none;  // one data line
+    } else if (block == Block::material_option) {
+      for (const auto& s : f)
+        if (!s.empty()) material->options.back().data.push_back(to_double(s));
     } else if (block == Block::boundary) {
       // "node, first dof[, last dof[, value]]" or "node, ENCASTRE|PINNED"; node is an id, a
       // node set, or either prefixed by "Instance.". Rotations (dofs 4-6) and other named
@@ -164,15 +198,23 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
         auto& b = m.boundary[id];
         for (int k = first; k <= std::min(last, 3); ++k) b.displacement[k - 1] = value, b.dof_mask |= 1 << (k - 1);
       }
-    } else if (block == Block::nset) {
-      auto& set = m.node_sets[nset];
+    } else if (block == Block::nset || block == Block::elset) {
+      auto& set = block == Block::nset ? m.node_sets[nset] : m.element_sets[elset];
       if (generate) {
         if (f.size() < 2) fail("first, last[, step]");
         const long long first = to_int(f[0]), last = to_int(f[1]), step = f.size() > 2 ? to_int(f[2]) : 1;
         if (step <= 0 || first > last || (last - first) / step > 100000000) fail("first <= last, step > 0, at most 1e8 ids");
         for (long long id = first; id <= last; id += step) set.push_back(static_cast<int>(id));
       } else {
-        for (const auto& s : f) set.push_back(to_int(s));
+        // Ids, or the names of sets defined before (an *Elset of other elsets).
+        const auto& sets = block == Block::nset ? m.node_sets : m.element_sets;
+        for (const auto& s : f) {
+          const auto named = sets.find(upper(s));
+          if (!s.empty() && !std::isdigit(static_cast<unsigned char>(s[0])) && s[0] != '-' && named != sets.end())
+            set.insert(set.end(), named->second.begin(), named->second.end());
+          else
+            set.push_back(to_int(s));
+        }
       }
     }
   }
@@ -262,8 +304,174 @@ std::vector<std::pair<int, int>> line_elements(const AbaqusModel& model) {
   return out;
 }
 
+namespace {
+
+std::string quote_numbers(const std::vector<double>& data) {
+  std::string out;
+  for (double v : data) out += (out.empty() ? "" : ", ") + format_number(v);
+  return out;
+}
+
+std::string option_text(const AbaqusModel::MaterialOption& o) {
+  std::string text = o.keyword;
+  for (const auto& w : o.words) text += ", " + w;
+  return text;
+}
+
+// "DECK *Material, name=NAME (line N): OPTION: numbers": the line a preset's source quotes.
+std::string source_line(const AbaqusModel::Material& m, const AbaqusModel::MaterialOption& o, const std::string& file) {
+  return file + " *Material, name=" + m.name + " (line " + std::to_string(m.line) + "): " + option_text(o) + ": " +
+         quote_numbers(o.data) + " (units mm, tonne, s, MPa)";
+}
+
+const AbaqusModel::MaterialOption* find_option(const AbaqusModel::Material& m, const std::string& keyword) {
+  for (const auto& o : m.options)
+    if (o.keyword == keyword) return &o;
+  return nullptr;
+}
+
+bool has(const AbaqusModel::MaterialOption& o, const std::string& word) {
+  return std::find(o.words.begin(), o.words.end(), word) != o.words.end();
+}
+
+std::string option_value(const AbaqusModel::MaterialOption& o, const std::string& key) {
+  for (const auto& w : o.words)
+    if (w.rfind(key + "=", 0) == 0) return trim(w.substr(key.size() + 1));
+  return "";
+}
+
+std::string mpa(double v) { return format_number(v) + " MPa"; }
+std::string per_mpa(double v) { return format_number(v) + " 1/MPa"; }
+
+[[noreturn]] void not_modelled(const AbaqusModel::Material& m, const std::string& file, const std::string& expected) {
+  std::string found;
+  for (const auto& o : m.options)
+    if (o.keyword != "*DENSITY" && o.keyword != "*DEPVAR" && o.keyword != "*TRANSVERSE SHEAR" && o.keyword != "*DAMPING")
+      found += (found.empty() ? "" : "; ") + option_text(o);
+  throw_input_error(file, "*Material, name=" + m.name + " (line " + std::to_string(m.line) + ")", expected,
+                    found.empty() ? "no constitutive option" : found);
+}
+
+void need_values(const AbaqusModel::Material& m, const AbaqusModel::MaterialOption& o, std::size_t count,
+                 const std::string& file) {
+  if (o.data.size() < count)
+    throw_input_error(file, "*Material, name=" + m.name + " " + option_text(o) + " (line " + std::to_string(o.line) + ")",
+                      std::to_string(count) + " values", std::to_string(o.data.size()));
+}
+
+}  // namespace
+
+nlohmann::json leaflet_material_json(const AbaqusModel::Material& m, const std::string& file) {
+  const std::string expected =
+      "a leaflet law valve models (*Anisotropic Hyperelastic, USER named VUANISO_ISO* or VUANISO_HGO*, or "
+      "*Hyperelastic, NEO HOOKE)";
+  nlohmann::json j = {{"name", m.name}};
+  const std::string name = upper(m.name);
+  if (const auto* o = find_option(m, "*ANISOTROPIC HYPERELASTIC"); o && has(*o, "USER")) {
+    j["source"] = source_line(m, *o, file) + "; the branch of Leaflet_Material.f its name selects";
+    if (name.rfind("VUANISO_ISO", 0) == 0) {
+      need_values(m, *o, 4, file);
+      j["law"] = "iso_exponential";
+      j["C0"] = mpa(o->data[0]);
+      j["D"] = per_mpa(o->data[1]);
+      j["C1"] = mpa(o->data[2]);
+      j["C2"] = o->data[3];
+    } else if (name.rfind("VUANISO_HGO", 0) == 0) {
+      need_values(m, *o, 6, file);
+      j["law"] = "hgo";
+      j["C10"] = mpa(o->data[0]);
+      j["D"] = per_mpa(o->data[1]);
+      j["k1"] = mpa(o->data[2]);
+      j["k2"] = o->data[3];
+      j["kappa"] = o->data[4];
+      j["C01"] = o->data[5];
+    } else {
+      not_modelled(m, file, expected);
+    }
+  } else if (const auto* h = find_option(m, "*HYPERELASTIC"); h && has(*h, "NEO HOOKE")) {
+    need_values(m, *h, 1, file);
+    j["source"] = source_line(m, *h, file) + "; NEO HOOKE C10 (Ī1 − 3) is C0/2 (Ī1 − 3) with C0 = 2 C10";
+    j["law"] = "iso_exponential";
+    j["C0"] = mpa(2 * h->data[0]);
+    j["D"] = per_mpa(h->data.size() > 1 ? h->data[1] : 0.0);
+  } else {
+    not_modelled(m, file, expected);
+  }
+  if (const auto* d = find_option(m, "*DENSITY"); d && !d->data.empty())
+    j["density"] = format_number(d->data[0] * 1e6) + " g/mm^3";  // tonne/mm³ -> g/mm³
+  return j;
+}
+
+nlohmann::json chord_law_json(const AbaqusModel::Material& m, const std::string& file) {
+  const std::string expected = "a chord law valve models (*Hyperelastic, OGDEN or NEO HOOKE, or *Elastic)";
+  nlohmann::json j;
+  if (const auto* h = find_option(m, "*HYPERELASTIC"); h && has(*h, "OGDEN")) {
+    const std::string n_text = option_value(*h, "N");
+    const int n = n_text.empty() ? 1 : std::atoi(n_text.c_str());
+    if (n < 1 || n > 3)
+      throw_input_error(file, "*Material, name=" + m.name + " " + option_text(*h), "OGDEN with N = 1..3", "N=" + n_text);
+    need_values(m, *h, 3 * n, file);
+    j["source"] = source_line(m, *h, file);
+    j["law"] = "ogden";
+    j["mu"] = nlohmann::json::array();
+    j["alpha"] = nlohmann::json::array();
+    j["D"] = nlohmann::json::array();
+    for (int k = 0; k < n; ++k) {
+      j["mu"].push_back(mpa(h->data[2 * k]));
+      j["alpha"].push_back(h->data[2 * k + 1]);
+      j["D"].push_back(per_mpa(h->data[2 * n + k]));
+    }
+  } else if (h && has(*h, "NEO HOOKE")) {
+    need_values(m, *h, 1, file);
+    j["source"] = source_line(m, *h, file) + "; NEO HOOKE is Ogden N = 1 with mu = 2 C10, alpha = 2";
+    j["law"] = "ogden";
+    j["mu"] = {mpa(2 * h->data[0])};
+    j["alpha"] = {2.0};
+    j["D"] = {per_mpa(h->data.size() > 1 ? h->data[1] : 0.0)};
+  } else if (const auto* e = find_option(m, "*ELASTIC"); e && !has(*e, "TYPE=ENGINEERING CONSTANTS") && !has(*e, "TYPE=ORTHOTROPIC")) {
+    need_values(m, *e, 1, file);
+    j["source"] = source_line(m, *e, file);
+    j["law"] = "linear";
+    j["youngs_modulus"] = mpa(e->data[0]);
+  } else {
+    not_modelled(m, file, expected);
+  }
+  return j;
+}
+
+nlohmann::json leaflet_materials_json(const AbaqusModel& model, const std::string& file) {
+  nlohmann::json list = nlohmann::json::array();
+  bool any = false;
+  for (const auto& s : model.sections) any = any || s.kind == "SHELL";
+  if (!any) return list;
+  int leaflet = 0;
+  for (const auto& b : model.blocks) {
+    if (b.type.empty() || b.type[0] != 'S') continue;
+    const AbaqusModel::Section* section = nullptr;
+    for (const auto& s : model.sections) {
+      if (s.kind != "SHELL") continue;
+      const auto set = model.element_sets.find(upper(s.elset));
+      if (upper(s.elset) == upper(b.elset) ||
+          (set != model.element_sets.end() && !b.ids.empty() &&
+           std::find(set->second.begin(), set->second.end(), b.ids.front()) != set->second.end()))
+        section = &s;
+    }
+    if (!section)
+      throw_input_error(file, "*Element, elset=" + b.elset, "a *Shell Section for every shell element block", "none");
+    const auto material = model.materials.find(upper(section->material));
+    if (material == model.materials.end())
+      throw_input_error(file, "*Shell Section, elset=" + section->elset, "a *Material named " + section->material,
+                        "none");
+    list.push_back({{"leaflets", {leaflet}},
+                    {"material", leaflet_material_json(material->second, file)},
+                    {"thickness", format_number(section->value) + " mm"}});
+    ++leaflet;
+  }
+  return list;
+}
+
 ChordaeNetwork truss_chordae(const AbaqusModel& model, const std::vector<int>& model_rows, const TriMesh& leaflets,
-                             double* max_tip_motion_mm) {
+                             const std::string& file, double* max_tip_motion_mm) {
   std::vector<int> mesh_node(model.points.rows(), -1), point_of_row(model.points.rows(), -1);
   for (std::size_t i = 0; i < model_rows.size(); ++i) mesh_node[model_rows[i]] = static_cast<int>(i);
   ChordaeNetwork net;
@@ -291,18 +499,37 @@ ChordaeNetwork truss_chordae(const AbaqusModel& model, const std::vector<int>& m
   auto on_free_edge = [&](int p) {
     return net.points[p].kind == ChordPointKind::insertion && leaflets.boundary[net.points[p].mesh_node] == BoundaryType::free_edge;
   };
-  for (const auto& [a, b] : line_elements(model)) {
-    ChordSegment seg;
-    seg.from = point(a);
-    seg.to = point(b);
-    seg.type = on_free_edge(seg.from) || on_free_edge(seg.to) ? ChordType::primary : ChordType::secondary;
-    net.segments.push_back(seg);
+  // The *Solid Section of each truss element, through its elset.
+  std::unordered_map<int, const AbaqusModel::Section*> section_of;
+  double area_sum = 0;
+  int area_count = 0;
+  for (const auto& s : model.sections) {
+    if (s.kind != "SOLID") continue;
+    area_sum += s.value, ++area_count;
+    const auto set = model.element_sets.find(upper(s.elset));
+    if (set != model.element_sets.end())
+      for (int id : set->second) section_of[id] = &s;
   }
-  if (!model.section_areas.empty()) {
-    double mean_area = 0;
-    for (double a : model.section_areas) mean_area += a / model.section_areas.size();
-    net.diameter = std::sqrt(4 * mean_area / M_PI);
+  for (const auto& b : model.blocks) {
+    if (b.type != "T3D2" && b.type != "B31" && b.type != "T3D3") continue;
+    for (std::size_t k = 0; k < b.nodes.size(); ++k) {
+      ChordSegment seg;
+      seg.from = point(model.row_of_node.at(b.nodes[k].front()));
+      seg.to = point(model.row_of_node.at(b.nodes[k].back()));
+      seg.type = on_free_edge(seg.from) || on_free_edge(seg.to) ? ChordType::primary : ChordType::secondary;
+      if (const auto it = section_of.find(b.ids[k]); it != section_of.end()) {
+        const AbaqusModel::Section& s = *it->second;
+        seg.area = s.value;
+        const auto material = model.materials.find(upper(s.material));
+        if (material == model.materials.end())
+          throw_input_error(file, "*Solid Section, elset=" + s.elset, "a *Material named " + s.material, "none");
+        seg.material = material->second.name;
+        if (!net.materials.count(seg.material)) net.materials[seg.material] = chord_law_json(material->second, file);
+      }
+      net.segments.push_back(seg);
+    }
   }
+  if (area_count > 0) net.diameter = std::sqrt(4 * (area_sum / area_count) / M_PI);
   if (max_tip_motion_mm) *max_tip_motion_mm = tip_motion;
   return net;
 }

@@ -1,14 +1,16 @@
 #pragma once
-// Chordae tendineae as linear elastic rods that carry tension only (seed 5.2.2, Table 5.1:
-// E = 40 MPa, D = 0.5 mm). A rod between nodes a and b with rest length L0 and axial
-// stiffness EA (N) pulls its ends together when stretched:
-//   L = |x_b − x_a|,  d = (x_b − x_a) / L,  T = EA (L − L0) / L0 if L > L0, else 0,
+// Chordae tendineae as rods that carry tension only (seed 5.2.2), each with its own uniaxial
+// law (material/rod_law.hpp: linear, E = 40 MPa in seed Table 5.1, or the Texas TriValve
+// deck's Ogden law) and reference section A0. A rod between nodes a and b with rest length L0:
+//   L = |x_b − x_a|,  d = (x_b − x_a) / L,  λ = L / L0,  T = A0 P(λ)  (P = 0 for λ <= 1),
 //   f_a = T d,  f_b = −T d,
-//   ∂f_a/∂x_b = K = (EA / L0) d dᵀ + (T / L)(I − d dᵀ),  ∂f_a/∂x_a = −K,
-//   energy ½ (EA / L0)(L − L0)² while taut.
+//   ∂f_a/∂x_b = K = (A0 P'(λ) / L0) d dᵀ + (T / L)(I − d dᵀ),  ∂f_a/∂x_a = −K,
+//   energy A0 L0 W(λ).
 // A slack rod contributes nothing, so a buckled chord never pushes a leaflet.
+#include <memory>
 #include <vector>
 
+#include "valve/material/rod_law.hpp"
 #include "valve/mechanics/force_term.hpp"
 
 namespace valve {
@@ -16,12 +18,13 @@ namespace valve {
 struct Rod {
   int a = 0, b = 0;
   double rest_length = 1;  // mm
-  double axial_stiffness = 0;  // EA, N
+  double area = 0;         // reference section A0, mm²
+  std::shared_ptr<const RodLaw> law;
 };
 
 class ChordaeTerm final : public ForceTerm {
  public:
-  explicit ChordaeTerm(std::vector<Rod> rods) : rods_(std::move(rods)) {}
+  explicit ChordaeTerm(std::vector<Rod> rods);
   std::string name() const override { return "chordae"; }
   void couplings(std::vector<std::pair<int, int>>& pairs) const override;
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;

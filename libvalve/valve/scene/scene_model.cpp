@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "valve/config/json_reader.hpp"
+#include "valve/config/material_config.hpp"
 #include "valve/core/error.hpp"
 
 namespace valve {
@@ -69,7 +70,16 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
     if (net.segments.empty())
       throw_input_error(sc.file.string(), "chordae.types", "types present in " + cc.file.string(), "no chord of those types");
     for (ChordSegment& s : net.segments) s.scale *= cc.rest_length_scale;
-    model.attachment = attach_chordae(net, leaflets.num_nodes(), ChordMaterial{cc.youngs_modulus, sc.density});
+    ChordMaterial material;
+    material.default_law = std::make_shared<LinearRodLaw>(cc.youngs_modulus);
+    material.diameter = cc.diameter;
+    material.density = sc.density;
+    if (cc.law == ChordaeConfig::Law::file)
+      for (const auto& [name, law] : net.materials) {
+        JsonReader r(law, cc.file.string(), "materials." + name);
+        material.named_laws[name] = parse_rod_law(r);
+      }
+    model.attachment = attach_chordae(net, leaflets.num_nodes(), material);
     model.mesh = with_chordae_nodes(model.mesh, model.attachment);
     if (!cc.papillary_tips.empty()) {
       std::vector<int> tips;
