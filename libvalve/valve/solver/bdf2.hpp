@@ -43,8 +43,8 @@
 // Settle rule (optional, settle_window > 0): the run has also converged when no monitor
 // node strayed more than settle_tolerance from where it was at the start of a window of
 // settle_window of simulated time. With penalty contact a few nodes can chatter in place
-// by micrometres per step for ever, so the per-step rule never fires although the shape no
-// longer changes (sample mitral closure with bending: every node within 0.007 mm over the
+// by micrometres per step for ever, so the per-step rule never fires although the shape has
+// stopped changing (sample mitral closure with bending: every node within 0.007 mm over the
 // last 650 ms, 0.005 mm per step); the residual tolerance still applies.
 #include <functional>
 #include <memory>
