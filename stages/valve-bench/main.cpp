@@ -1,5 +1,5 @@
 // valve-bench --scene SCENE.json --out DIR [--mesh FILE] [--repetitions N] [--broad-phase] [--quiet]
-// Cost of the scene's closure with both models (seed Table 3.3 and the targets):
+// Cost of the scene's closure with both models (seed Table 3.3):
 // internal-force time per element per evaluation (forces only, and with the Jacobian), the
 // M-S/FE ratio, and for each model the closure's wall time, steps, factorizations and total
 // time over one factorization of the same system. Writes DIR/bench.json and DIR/bench.csv.

@@ -5,7 +5,7 @@
 // simulating it again: another gap measure or threshold on a closure that took minutes, or a
 // valve closed elsewhere. The analysis is valve-simulate's (analysis/coaptation.hpp):
 //   --gap ray (default; the seed's: along each node's normal) | nearest (to the nearest point
-//     of another leaflet; see "How coaptation is measured" in the README);
+//     of another leaflet; see docs/methods/coaptation.md);
 //   --threshold 0.5 (mm; a node coapts when its gap is at most this), --free-edge-offset 3
 //     (mm; how far below a free edge a band may begin), --commissure-margin 0.1 (fraction of
 //     each free edge left out of the minimum height at both ends), --closed-min-height 0.5

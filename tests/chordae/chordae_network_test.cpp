@@ -1,5 +1,5 @@
-// chordae.json: the phantom's network survives a round trip, and the network checks that
-// issue 5 names (zero-length chord, tree without a papillary tip) reject bad files.
+// chordae.json: the phantom's network survives a round trip, and the network checks
+// (zero-length chord, tree without a papillary tip) reject bad files.
 #include <catch2/catch.hpp>
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// The parametric open mitral valve (issue 4): annulus size, leaflet lengths, chordae and
+// The parametric open mitral valve: annulus size, leaflet lengths, chordae and
 // seeded variation, checked against the options they are built from.
 #include <catch2/catch.hpp>
 #include <cmath>

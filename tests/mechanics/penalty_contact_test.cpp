@@ -234,8 +234,8 @@ TEST_CASE("penalty contact step ratio bounds each pair's closing along its norma
     const double s = 0.05;
     CHECK(c.step_ratio(x, move_top(Vec3(0, 0, -s))) ==
           Approx(std::max(s / (0.8 * std::max(delta, h)), s / (2 * L))));
-    // Moving apart closes nothing; sliding sideways neither (the absolute bound of the
-    // first version: 0.3 / (0.8 max(δ, h)), 1.5 at h = 0.1).
+    // Moving apart closes nothing; sliding sideways neither (an absolute bound on each
+    // node's move would give 0.3 / (0.8 max(δ, h)), 1.5 at h = 0.1).
     CHECK(c.step_ratio(x, move_top(Vec3(0, 0, 0.3))) == Approx(0.3 / (2 * L)));
     CHECK(c.step_ratio(x, move_top(Vec3(0.3, 0, 0))) == Approx(0.3 / (2 * L)));
     // The whole valve moving together closes nothing either.

@@ -188,7 +188,7 @@ TEST_CASE("BDF2 keeps steps within the terms' move limit and cuts a step to fit 
   // a truncation tolerance too loose to matter, sets every step. No accepted step may move
   // the node further than the limit, and since h is cut to fit (and grown no further than
   // the limit predicts) rejections stay rare; quartering h after every step over the limit
-  // made a saw-tooth with a rejection every few steps (the aortic valve: 316 of 1,383).
+  // makes a saw-tooth with a rejection every few steps (the aortic valve: 316 of 1,383).
   const double limit = 0.002;
   TriMesh m;
   m.points.resize(3, 3);

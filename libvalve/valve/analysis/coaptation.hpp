@@ -47,10 +47,9 @@
 // 1.6-2 mm, below them), while contact patches further down (a belly touching a neighbour)
 // stay out of the height. Columns are sampled every 1/200 of the free edge's rest length,
 // and at both margins and the middle.
-// Until session 25 the columns were sets of nodes (each node in the column of its nearest
-// free-edge node, by graph distance over the deformed mesh) and h ran to the deepest node of
-// the band. On the aortic valve's unstructured mesh some free-edge nodes are the nearest of
-// no other node, so their columns read 0 whatever coapted below them; see leaflet_columns.hpp.
+// Why lines rather than sets of nodes (each node in the column of its nearest free-edge
+// node): on the aortic valve's unstructured mesh some free-edge nodes are the nearest of no
+// other node, so such columns read 0 whatever coapted below them; see leaflet_columns.hpp.
 //
 // Reach of the free edges (given the valve axis). In a sealed three-leaflet valve the free
 // edges meet on the axis; a free edge that stops short of it leaves a hole at the centre,
@@ -69,8 +68,8 @@
 // whole free edge between the margins and is nowhere pinched thinner than the leaflet.
 // Why not > 0: heights along interpolated columns are continuous, so a band pinched to a
 // point reads from rounding (1e-15 mm) to a few hundredths of a millimetre where it breaks:
-// of the 29 valves of the graft and ten-mesh studies that > 0 called closed (session 25),
-// 9 had minima of 1e-15 to 0.08 mm and one 0.33 mm; the next smallest was 0.81 mm.
+// of the 29 valves of the graft and ten-mesh studies that > 0 calls closed,
+// 9 have minima of 1e-15 to 0.08 mm and one 0.33 mm; the next smallest is 0.81 mm.
 #include <nlohmann/json.hpp>
 #include <cmath>
 #include <optional>

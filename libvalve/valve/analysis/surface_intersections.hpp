@@ -1,6 +1,6 @@
 #pragma once
 // Does a deformed surface pass through itself? An independent check of contact handling
-// (issue 3: no interpenetration): the contact terms see only pairs closer than their
+// (no interpenetration): the contact terms see only pairs closer than their
 // separation and measure unsigned distances, so a pair that crossed between two steps would
 // look to them like a pair in contact. Here every two triangles that share no node are
 // tested for intersection with CGAL's exact predicates (Epick: the answer is exact for the

@@ -1,6 +1,6 @@
 #pragma once
-// Chordae found in a segmentation (seed 5.2.2; issue 5: "automatically from the
-// segmentation"): the chordae label is thinned to a curve skeleton (imaging/skeleton.hpp) and
+// Chordae found in a segmentation (seed 5.2.2), without a hand-made chordae file: the
+// chordae label is thinned to a curve skeleton (imaging/skeleton.hpp) and
 // read as a graph whose vertices are the skeleton's curve ends and junctions (26-adjacent
 // junction voxels are one branch point) and whose edges are the voxel paths between them.
 //   - Spurs: a branch shorter than min_spur_mm from a junction to a free end is a bump of

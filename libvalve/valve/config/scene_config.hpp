@@ -3,7 +3,7 @@
 // pressure, edge loads, damping, fixed nodes, contact, aortic root, per-leaflet materials,
 // load increments, solver, monitor, output).
 // Everything is validated and defaulted here, in one place; `used` records the values
-// after defaults for the stage summary. See configs/README.md for the schema.
+// after defaults for the stage summary. docs/scene.md lists the keys.
 #include <filesystem>
 #include <optional>
 #include <string>

@@ -19,7 +19,7 @@
 //
 // Why not the dihedral angle θ itself (discrete shells): its gradient grows as 1/h, and
 // on the sample mitral closure it collapsed folded triangles to zero area, where θ jumps
-// by π (tried: residual 1e11). Why flat: v is rotation invariant only for a flat reference.
+// by π (measured: residual 1e11). Why flat: v is rotation invariant only for a flat reference.
 // The open leaflet's rest curvature is therefore not kept, and the term moves the unloaded
 // leaflet (measured: 2.2 mm at most on the 648-triangle sample mitral membrane with
 // E_b = 100 kPa, t = 1 mm, zero-pressure static solve; Table 5.1's small-strain fibre slope

@@ -16,9 +16,9 @@
 //     E = Σ_pairs k (δ − d)³ / (3 δ)   for d < δ,  0 otherwise,
 //
 // so the force k (δ − d)² / δ and its stiffness 2 k (δ − d) / δ both start from zero at
-// d = δ and reach k δ and 2 k at d = 0. A quadratic energy (force k (δ − d)) was tried
-// first: a pair that enters contact between two Jacobian evaluations then acts with its
-// full stiffness explicitly, and BDF2 chattered at 0.002 mm per step on two sheets pressed
+// d = δ and reach k δ and 2 k at d = 0. Why not a quadratic energy (force k (δ − d)): a
+// pair that enters contact between two Jacobian evaluations then acts with its full
+// stiffness explicitly, and BDF2 chatters at 0.002 mm per step on two sheets pressed
 // together instead of settling; with the cubic it settles.
 //
 // Pairs: (1) node p vs triangle t, q = Σ w_j x_j the closest point of t to p (on its face,
@@ -34,12 +34,11 @@
 // 2.5 mm (the mitral scene's setting), so it stays a scene option. Excluded pairs: see
 // ContactTopology. Every pair closer than δ acts, so the total
 // energy and force are continuous in the positions.
-// Why not only the nearest triangle per node and leaflet (the first version): a node in a
-// valley between two faces meeting at an angle switches between them, its force turns by
-// that angle in one step, and BDF2 locked into a 2-cycle (measured on the sample mitral
-// closure: node 210 alternated each step between two faces 60° apart, the closure never
-// came to rest; 4,552 steps, residual 0.05, 58 s; with every pair: 968 steps, residual
-// 1.1e-4, 13.9 s). The price: a node over a shared edge or vertex is pushed by each of its
+// Why not only the nearest triangle per node and leaflet: a node in a valley between two
+// faces meeting at an angle switches between them, its force turns by that angle in one
+// step, and BDF2 locks into a 2-cycle (measured on the sample mitral closure: node 210
+// alternated each step between two faces 60° apart, the closure never came to rest; 4,552
+// steps, residual 0.05, 58 s; with every pair: 968 steps, residual 1.1e-4, 13.9 s). The price: a node over a shared edge or vertex is pushed by each of its
 // triangles, up to ~6x the stiffness over a face centre; with k δ = 0.25 N against ~0.02 N
 // of pressure per node this moves the resting separation by a few hundredths of a mm.
 //
@@ -79,11 +78,11 @@
 // penalty, whose stiffness is well above the applied load (k δ ≫ pressure × node area),
 // keeps pairs from closing that fast (measured: with steps up to 0.6 mm, sheets pressed
 // together crossed). Sliding along n's plane costs nothing. Where d vanishes (no n), the
-// bound is max_j |Δx_j − Δp|. Why not an absolute bound: the first version kept every node
-// of a pair within 0.4 max(δ, d) of where it started, and two coapting leaflets moving
-// together were held to 0.1 mm per step; the sample mitral closure took 263 steps (188
-// bounding the relative motion max_j |Δx_j − Δp| instead, still held on 108 steps by pairs
-// inside δ sliding past each other; 159 with the closing along n).
+// bound is max_j |Δx_j − Δp|. Why not an absolute bound: keeping every node of a pair within
+// 0.4 max(δ, d) of where it started holds two coapting leaflets moving together to 0.1 mm
+// per step; measured on the sample mitral closure: 263 steps with that bound, 188 bounding
+// the relative motion max_j |Δx_j − Δp| instead (still held on 108 steps by pairs inside δ
+// sliding past each other), 159 with the closing along n.
 #include <algorithm>
 #include <vector>
 

@@ -17,8 +17,8 @@
 // Move limits: force terms bound how far a step may move nodes (contact: step_ratio in
 // penalty_contact.hpp). A step over the bound is rejected and h cut so the largest ratio
 // comes to 0.75, and after an accepted step h grows no further than that target predicts.
-// (Quartering h on every such rejection made a saw-tooth: the aortic valve closure rejected
-// 316 of 1,383 steps on move limits and stepped below them for most of the rest.)
+// (Why not quarter h on every such rejection: that makes a saw-tooth; the aortic valve
+// closure so rejects 316 of 1,383 steps on move limits and steps below them for most of the rest.)
 // Period-2 swings: near a stiffness jump (a chord going taut or slack, a contact pair at
 // the edge of its zone) a linearised step at large h overshoots to the far side and the
 // next one back, and the predictor estimate lets a swing of amplitude A through when 1.6 A
@@ -43,8 +43,8 @@
 // Settle rule (optional, settle_window > 0): the run has also converged when no monitor
 // node strayed more than settle_tolerance from where it was at the start of a window of
 // settle_window of simulated time. With penalty contact a few nodes can chatter in place
-// by micrometres per step for ever, so the per-step rule never fires although the shape no
-// longer changes (sample mitral closure with bending: every node within 0.007 mm over the
+// by micrometres per step for ever, so the per-step rule never fires although the shape has
+// stopped changing (sample mitral closure with bending: every node within 0.007 mm over the
 // last 650 ms, 0.005 mm per step); the residual tolerance still applies.
 #include <functional>
 #include <memory>

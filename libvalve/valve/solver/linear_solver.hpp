@@ -24,7 +24,7 @@ const std::vector<std::string>& linear_solver_names();
 /// stiffness, and with only the symmetric part in the matrix the sample mitral closure let a
 /// folded free-edge node orbit at steps of 5-25 ms (predictor estimate, tolerance 0.03-0.1 mm:
 /// 0.04-0.08 mm per step for 90 s simulated, never settling); with the whole system it settles
-/// at every tolerance tried. Cost there: 3.3 ms per factorization and 3.2 BiCGStab iterations
+/// at every tolerance measured. Cost there: 3.3 ms per factorization and 3.2 BiCGStab iterations
 /// per solve on average (iterative_tolerance 1e-10), against 2.7 ms for the symmetric part alone and 5.7 ms (UMFPACK) or
 /// 7.9 ms (KLU) for an LU of the whole system. Above `kLargeSystemDofs`, CHOLMOD supernodal
 /// Cholesky of the symmetric part: on the sample mitral contact system (1,140 unknowns, 90k
