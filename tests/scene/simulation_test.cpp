@@ -2,6 +2,8 @@
 // independent inversion of Eq. 3.1-3.3), and agreement of the static and dynamic solvers.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/config/scene_config.hpp"
@@ -114,6 +116,29 @@ TEST_CASE("leaflet_materials: one material group per triangle, clear errors othe
   CHECK_THROWS_WITH(material_groups(twice, mesh), Catch::Contains("leaflet_materials[1].leaflets") && Catch::Contains("listed twice"));
   const SceneConfig absent = scene(json::array({{{"leaflets", {7}}, {"material", "pericardium_surrogate"}}}));
   CHECK_THROWS_WITH(build_system(absent, mesh), Catch::Contains("leaflet_materials[0].leaflets"));
+}
+
+TEST_CASE("leaflet_materials may name a file holding the list (valve-phantom ttv writes one)", "[scene]") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "valve_leaflet_materials_test";
+  fs::create_directories(dir);
+  const json list = json::array({{{"leaflets", {1}},
+                                  {"material", {{"law", "iso_exponential"}, {"C0", "1 kPa"}, {"C1", "0.2 kPa"}, {"C2", 10}}},
+                                  {"thickness", "0.65 mm"}}});
+  std::ofstream(dir / "open.leaflet_materials.json") << list.dump();
+  const SceneConfig sc = parse_scene({{"mesh", "unused.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
+                                      {"leaflet_materials", "open.leaflet_materials.json"}},
+                                     (dir / "s.json").string(), dir);
+  REQUIRE(sc.leaflet_materials.size() == 1);
+  CHECK(sc.leaflet_materials[0].leaflets == std::vector<int>{1});
+  CHECK(sc.leaflet_materials[0].thickness == Approx(0.65));
+  CHECK(sc.leaflet_materials[0].material.law()->name() == "iso_exponential");
+  std::ofstream(dir / "bad.json") << json::array({{{"leaflets", json::array()}, {"material", "aortic_leaflet"}}}).dump();
+  CHECK_THROWS_WITH(parse_scene({{"mesh", "unused.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
+                                 {"leaflet_materials", "bad.json"}},
+                                (dir / "s.json").string(), dir),
+                    Catch::Contains("bad.json") && Catch::Contains("[0].leaflets"));
+  fs::remove_all(dir);
 }
 
 TEST_CASE("coaptation block: gap measure, threshold, offset and closed height, with file/key errors", "[scene]") {
