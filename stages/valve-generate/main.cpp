@@ -4,7 +4,8 @@
 //                [--relax-iterations N]   (triangulate+equalize rounds, default 60; 0 = raw random points)
 // Writes analytic meshes (seed 3.2.2.1, Fig. 3.1) as .vtp with FiberDirection, NodeRole,
 // BoundaryType and Leaflet arrays, plus generate.summary.json with their quality.
-// KIND: square_patch | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
+// KIND: square_patch | clamped_disk (a flat disk of --diameter, rim fixed: pressure tests and
+// the CalculiX cross-check) | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
 // [--gamma DEG] [--commissure-height MM] [--graft-leaflet K --graft-width-pct W
 // --graft-height-pct H], fibers at 25 deg by default, descending toward each leaflet's
 // midline; a negative angle mirrors them). --count K writes K meshes with
@@ -58,11 +59,14 @@ int main(int argc, char** argv) {
       throw InputError("valve-generate: KIND: expected one of square_patch|aortic_leaflet|three_leaflet_valve|aortic_valve, found " +
                        std::to_string(cl.positional().size()) + " positional arguments");
     const std::string kind = cl.positional()[0];
-    if (kind != "square_patch" && kind != "aortic_leaflet" && kind != "three_leaflet_valve" && kind != "aortic_valve")
-      throw InputError("valve-generate: KIND: expected square_patch|aortic_leaflet|three_leaflet_valve|aortic_valve, found \"" + kind + "\"");
+    if (kind != "square_patch" && kind != "clamped_disk" && kind != "aortic_leaflet" && kind != "three_leaflet_valve" &&
+        kind != "aortic_valve")
+      throw InputError("valve-generate: KIND: expected square_patch|clamped_disk|aortic_leaflet|three_leaflet_valve|aortic_valve, found \"" +
+                       kind + "\"");
     const fs::path out = cl.require("out");
     const bool valve = kind == "three_leaflet_valve" || kind == "aortic_valve";
-    const int default_triangles = kind == "square_patch" ? 229 : (kind == "aortic_leaflet" ? 221 : 663);
+    const int default_triangles =
+        kind == "square_patch" ? 229 : kind == "clamped_disk" ? 300 : (kind == "aortic_leaflet" ? 221 : 663);
     // A valve's leaflets take a third each, and each needs at least two triangles.
     const int triangles = static_cast<int>(parse_integer(cl, "triangles", default_triangles, valve ? 6 : 2, 5000000));
     const auto seed = static_cast<std::uint64_t>(parse_integer(cl, "seed", 1, 0, 1000000000000000L));
@@ -89,6 +93,13 @@ int main(int argc, char** argv) {
         o.mesh = mo;
         mesh = generate_square_patch(o);
         summary.parameters()["side_mm"] = o.side;
+      } else if (kind == "clamped_disk") {
+        DiskOptions o;
+        o.diameter = parse_number(cl, "diameter", 20.0, 1e-6, 1e6);
+        o.fiber_angle_deg = fiber;
+        o.mesh = mo;
+        mesh = generate_clamped_disk(o);
+        summary.parameters()["diameter_mm"] = o.diameter;
       } else if (kind == "aortic_valve") {
         AorticValveOptions o;
         o.diameter = parse_number(cl, "diameter", 20.0, 1e-6, 1e6);
@@ -125,7 +136,7 @@ int main(int argc, char** argv) {
       nlohmann::json entry = {{"file", file}, {"seed", seed + k}, {"nodes", mesh.num_nodes()},
                               {"triangles", mesh.num_triangles()}, {"quality_mean", q.mean},
                               {"quality_min", q.min}, {"quality_below_0_6", q.below_0_6}};
-      if (kind != "square_patch") entry["free_edge_middle_node"] = free_edge_middle_node(mesh, 0);
+      if (kind != "square_patch" && kind != "clamped_disk") entry["free_edge_middle_node"] = free_edge_middle_node(mesh, 0);
       meshes.push_back(entry);
       progress.update(double(k + 1) / count, file);
     }

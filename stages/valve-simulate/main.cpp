@@ -44,20 +44,8 @@ int main(int argc, char** argv) {
     CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set"}, {"time-series", "quiet"});
     const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");
     const fs::path out = cl.require("out");
-    json j = load_json_file(scene_file);
-    if (!j.is_object()) throw InputError(scene_file.string() + ": expected a JSON object at the top level");
-    if (auto v = cl.get("mesh")) j["mesh"] = fs::absolute(*v).string();
-    if (auto v = cl.get("model")) j["model"] = *v;
-    if (auto v = cl.get("pressure")) {
-      if (!j.contains("pressure") || !j["pressure"].is_object()) j["pressure"] = json::object();
-      j["pressure"]["value"] = *v;
-    }
-    if (auto v = cl.get("solver")) {
-      if (!j.contains("solver") || !j["solver"].is_object()) j["solver"] = json::object();
-      j["solver"]["type"] = *v;
-    }
+    json j = scene_json_with_overrides(scene_file, cl);
     if (cl.has("time-series")) j["output"]["time_series"] = true;
-    for (const auto& assignment : cl.get_all("set")) apply_override(j, assignment, scene_file.string());
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
     const bool quiet = cl.has("quiet");
 

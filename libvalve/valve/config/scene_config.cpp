@@ -58,6 +58,23 @@ void parse_static(JsonReader& r, StaticOptions& o) {
 
 }  // namespace
 
+json scene_json_with_overrides(const fs::path& scene_file, const CommandLine& cl) {
+  json j = load_json_file(scene_file);
+  if (!j.is_object()) throw InputError(scene_file.string() + ": expected a JSON object at the top level");
+  if (auto v = cl.get("mesh")) j["mesh"] = fs::absolute(*v).string();
+  if (auto v = cl.get("model")) j["model"] = *v;
+  if (auto v = cl.get("pressure")) {
+    if (!j.contains("pressure") || !j["pressure"].is_object()) j["pressure"] = json::object();
+    j["pressure"]["value"] = *v;
+  }
+  if (auto v = cl.get("solver")) {
+    if (!j.contains("solver") || !j["solver"].is_object()) j["solver"] = json::object();
+    j["solver"]["type"] = *v;
+  }
+  for (const auto& assignment : cl.get_all("set")) apply_override(j, assignment, scene_file.string());
+  return j;
+}
+
 SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& base_dir) {
   JsonReader r(j, file);
   SceneConfig sc;

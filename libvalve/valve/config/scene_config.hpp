@@ -11,6 +11,7 @@
 
 #include "valve/analysis/coaptation.hpp"
 #include "valve/config/json_reader.hpp"
+#include "valve/core/cli.hpp"
 #include "valve/config/material_config.hpp"
 #include "valve/mechanics/contact.hpp"
 #include "valve/mechanics/penalty_contact.hpp"
@@ -138,6 +139,10 @@ struct SceneConfig {
   int time_series_every = 1;
   json used;
 };
+
+/// The scene file's JSON with a stage's command-line overrides applied: --mesh, --model,
+/// --pressure, --solver (those a stage accepts) and every --set key.path=value.
+json scene_json_with_overrides(const std::filesystem::path& scene_file, const CommandLine& cl);
 
 /// Loads and validates a scene file; relative paths inside are taken from its folder.
 SceneConfig load_scene(const std::filesystem::path& file);

@@ -279,6 +279,34 @@ TriMesh generate_square_patch(const SquarePatchOptions& opt) {
   return m;
 }
 
+TriMesh generate_clamped_disk(const DiskOptions& opt) {
+  if (opt.diameter <= 0) throw InputError("disk: diameter: expected > 0");
+  const double r = opt.diameter / 2;
+  PlanarDomain d;
+  d.area = kPi * r * r;
+  d.perimeter = 2 * kPi * r;
+  d.boundary = [r](double s) {
+    const int n = std::max(6, static_cast<int>(std::lround(2 * kPi * r / s)));
+    std::vector<Vec2> pts;
+    for (int k = 0; k < n; ++k) pts.emplace_back(r * std::cos(2 * kPi * k / n), r * std::sin(2 * kPi * k / n));
+    return pts;
+  };
+  d.signed_distance = [r](const Vec2& p) { return p.norm() - r; };
+  const PlanarMesh pm = mesh_planar_domain(d, opt.mesh);
+  TriMesh m;
+  m.points.resize(pm.points.size(), 3);
+  for (size_t i = 0; i < pm.points.size(); ++i) m.points.row(i) << pm.points[i].x(), pm.points[i].y(), 0;
+  m.triangles = pm.triangles;
+  const double a = opt.fiber_angle_deg * kPi / 180;
+  m.fiber.resize(m.num_triangles(), 3);
+  for (int t = 0; t < m.num_triangles(); ++t) m.fiber.row(t) << std::cos(a), std::sin(a), 0;
+  m.roles.assign(m.num_nodes(), NodeRole::free);
+  m.boundary.assign(m.num_nodes(), BoundaryType::interior);
+  for (int i = 0; i < pm.num_boundary; ++i) m.boundary[i] = BoundaryType::attached, m.roles[i] = NodeRole::fixed;
+  m.leaflet.assign(m.num_triangles(), 0);
+  return m;
+}
+
 TriMesh generate_aortic_leaflet(const LeafletOptions& opt) {
   return leaflet_row(opt, 1, opt.cylinder_circumference);
 }

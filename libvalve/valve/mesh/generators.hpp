@@ -18,6 +18,15 @@ struct SquarePatchOptions {
 /// nodes are marked free_edge.
 TriMesh generate_square_patch(const SquarePatchOptions& opt);
 
+struct DiskOptions {
+  double diameter = 20.0;         // mm
+  double fiber_angle_deg = 0.0;   // fiber direction measured from +x
+  PlanarMeshOptions mesh{300, 1};
+};
+/// Disk in the z = 0 plane centred at the origin, normals +z; its rim nodes are fixed
+/// (BoundaryType attached): the clamped plate of a pressure test and of the CalculiX cross-check.
+TriMesh generate_clamped_disk(const DiskOptions& opt);
+
 struct LeafletOptions {
   double diameter = 20.0;                // mm, semicircle diameter = unstressed free-edge length
   double cylinder_circumference = 60.0;  // mm
