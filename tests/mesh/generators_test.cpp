@@ -29,6 +29,34 @@ TEST_CASE("square patches: 229 ± 1 triangles, mean quality >= 0.95 over 10 seed
   }
 }
 
+TEST_CASE("clamped disk: flat, its rim fixed on the circle, its area that of the inscribed polygon", "[mesh]") {
+  DiskOptions o;
+  o.diameter = 20;
+  o.mesh.target_triangles = 600;
+  const TriMesh m = generate_clamped_disk(o);
+  CHECK(std::abs(m.num_triangles() - 600) <= 10);
+  double area = 0;
+  for (const Tri& t : m.triangles) {
+    area += triangle_area(m.points, t);
+    CHECK(triangle_normal(m.points, t).z() > 0.999);
+  }
+  int rim = 0;
+  for (int i = 0; i < m.num_nodes(); ++i) {
+    CHECK(m.points(i, 2) == 0);
+    const double r = m.points.row(i).norm();
+    if (m.roles[i] == NodeRole::fixed) {
+      ++rim;
+      CHECK(r == Approx(10.0).epsilon(1e-12));
+      CHECK(m.boundary[i] == BoundaryType::attached);
+    } else {
+      CHECK(r < 10.0 - 1e-9);
+    }
+  }
+  // The regular rim polygon of n sides inscribed in the circle: n/2 r² sin(2π/n).
+  CHECK(area == Approx(0.5 * rim * 100 * std::sin(2 * M_PI / rim)).epsilon(1e-9));
+  CHECK(summarize_quality(triangle_qualities(m.points, m.triangles)).mean > 0.95);
+}
+
 TEST_CASE("aortic leaflet: semicircle wrapped on the cylinder, fixed along its arc", "[mesh][seed]") {
   LeafletOptions o;
   const TriMesh m = generate_aortic_leaflet(o);
