@@ -52,6 +52,29 @@ void check_edges_pushed_apart(const VecX& f, std::initializer_list<int> upper, s
   for (int i : untouched) CHECK(node3(f, i).norm() == 0);
 }
 
+// f = −dE/dx in generic positions of two_sheets' node 3 (over the face, an edge, a vertex),
+// with node 1 lifted by `lift` and everything turned: central differences of the energy.
+void check_force_is_minus_energy_gradient(PenaltyContactTerm& c, const VecX& x, double lift, double margin) {
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
+  for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, -0.1, 0.1), Vec3(-0.08, -0.1, 0.1)}) {
+    VecX y = x;
+    node3(y, 3) = p;
+    y[3 * 1 + 2] = lift;
+    for (int i = 0; i < 6; ++i) node3(y, i) = R * node3(y, i);
+    c.update_couplings(y);
+    const VecX fy = forces(c, y);
+    REQUIRE(fy.norm() > 0);
+    const double h = 1e-7;
+    for (int k = 0; k < y.size(); ++k) {
+      VecX yp = y, ym = y;
+      yp[k] += h;
+      ym[k] -= h;
+      INFO("p = " << p.transpose() << ", dof " << k);
+      CHECK(fy[k] == Approx(-(energy_of(c, yp) - energy_of(c, ym)) / (2 * h)).margin(margin));
+    }
+  }
+}
+
 }  // namespace
 
 TEST_CASE("closest point on a triangle and between segments match dense sampling", "[mechanics][penalty_contact]") {
@@ -124,24 +147,83 @@ TEST_CASE("penalty contact: force magnitude, reaction, energy gradient", "[mecha
   CHECK(energy_of(c, far) == 0);
 
   // f = −dE/dx in generic positions: node over the face, over an edge, over a vertex.
-  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
-  for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, -0.1, 0.1), Vec3(-0.08, -0.1, 0.1)}) {
-    VecX y = x;
-    node3(y, 3) = p;
-    y[3 * 1 + 2] = 0.05;
-    for (int i = 0; i < 6; ++i) node3(y, i) = R * node3(y, i);
-    c.update_couplings(y);
-    const VecX fy = forces(c, y);
-    REQUIRE(fy.norm() > 0);
-    const double h = 1e-7;
-    for (int k = 0; k < y.size(); ++k) {
-      VecX yp = y, ym = y;
-      yp[k] += h;
-      ym[k] -= h;
-      INFO("p = " << p.transpose() << ", dof " << k);
-      CHECK(fy[k] == Approx(-(energy_of(c, yp) - energy_of(c, ym)) / (2 * h)).margin(1e-7));
+  check_force_is_minus_energy_gradient(c, x, 0.05, 1e-7);
+}
+
+TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the energy's gradient", "[mechanics][penalty_contact]") {
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.offset = 0.05;      // ξ
+  opt.separation = 0.25;  // ŝ
+  opt.stiffness = 0.1;    // κ
+  const TriMesh m = two_sheets(0.1);
+  PenaltyContactTerm c(m, opt, std::vector<char>(18, 0));
+  VecX x = flatten(m.points);
+  c.update_couplings(x);
+  // d = 0.1, s = d − ξ = 0.05: E = −κ (s − ŝ)² ln(s / ŝ), force −κ b'(s) on node 3 along +z.
+  const double s = 0.05, sh = 0.25;
+  CHECK(energy_of(c, x) == Approx(-0.1 * (s - sh) * (s - sh) * std::log(s / sh)).epsilon(1e-12));
+  const VecX f = forces(c, x);
+  CHECK(node3(f, 3).z() == Approx(0.1 * (2 * (s - sh) * std::log(s / sh) + (s - sh) * (s - sh) / s)).epsilon(1e-12));
+  Vec3 total = Vec3::Zero();
+  for (int i = 0; i < 6; ++i) total += node3(f, i);
+  CHECK(total.norm() < 1e-14);
+  // Beyond ξ + ŝ nothing; at or below ξ the energy is infinite.
+  VecX far = x, through = x;
+  far[3 * 3 + 2] = 0.31;
+  through[3 * 3 + 2] = 0.04;
+  CHECK(forces(c, far).norm() == 0);
+  CHECK(energy_of(c, far) == 0);
+  CHECK(std::isinf(energy_of(c, through)));
+  // f = −dE/dx in generic positions.
+  check_force_is_minus_energy_gradient(c, x, 0.02, 1e-6);
+  // The Jacobian is the pair's Hessian projected to positive semi-definite: as df/dx it is
+  // symmetric and negative semi-definite, and along the node's own normal motion, where
+  // κ b''(s) dominates, it is the finite-difference Jacobian.
+  PenaltyContactTerm cf(m, opt, std::vector<char>(18, 0));
+  VecX z = flatten(m.points);
+  node3(z, 3) = Vec3(0.6, 0.4, 0.12);
+  cf.update_couplings(z);
+  const VecX v = VecX::Zero(z.size());
+  const auto ana = analytic_dfdx(cf, m.num_nodes(), z, v, 1.0);
+  CHECK((ana - ana.transpose()).norm() < 1e-9 * ana.norm());
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(ana);
+  CHECK(eig.eigenvalues().maxCoeff() < 1e-9 * ana.norm());
+  const auto num = numeric_dfdx(cf, z, v, 1.0, 1e-7);
+  // The node's motion along the face normal: b''(s) dominates, the projection keeps it.
+  CHECK(ana(11, 11) == Approx(num(11, 11)).epsilon(0.02));
+}
+
+TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the offset", "[mechanics][penalty_contact]") {
+  // Random steps of a node over a triangle, scaled to the step bound: the distance along the
+  // whole straight path stays above ξ (sampled), and a step 1.5x the bound would get closer.
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.offset = 0.1;
+  const TriMesh m = two_sheets(0.3);
+  PenaltyContactTerm c(m, opt, std::vector<char>(18, 0));
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int bounded = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    VecX x = flatten(m.points);
+    node3(x, 3) = Vec3(0.3 + 0.3 * u(rng), 0.3 + 0.2 * u(rng), 0.12 + 0.15 * std::abs(u(rng)));
+    c.update_couplings(x);
+    VecX dx = VecX::Zero(x.size());
+    for (int k = 0; k < 18; ++k) dx[k] = 0.3 * u(rng);
+    node3(dx, 3).z() = -std::abs(node3(dx, 3).z()) - 0.2;  // toward the face
+    const double ratio = c.step_ratio(x, dx);
+    if (ratio <= 1) continue;
+    ++bounded;
+    const VecX step = dx / ratio;
+    for (int k = 0; k <= 50; ++k) {
+      const VecX y = x + (k / 50.0) * step;
+      const Vec3 p = node3(y, 3), a = node3(y, 0), b = node3(y, 1), cc = node3(y, 2);
+      const Vec3 w = closest_point_weights(p, a, b, cc);
+      CHECK((p - (w[0] * a + w[1] * b + w[2] * cc)).norm() > opt.offset);
     }
   }
+  CHECK(bounded > 50);
 }
 
 TEST_CASE("penalty contact Jacobian: exact over a fixed face, symmetric and non-positive", "[mechanics][penalty_contact][fd]") {

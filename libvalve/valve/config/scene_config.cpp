@@ -56,6 +56,19 @@ void parse_static(JsonReader& r, StaticOptions& o) {
   o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
 }
 
+void parse_quasistatic(JsonReader& r, QuasistaticOptions& o) {
+  o.relative_residual_tolerance = r.number("relative_residual_tolerance", o.relative_residual_tolerance, 1e-16, 1.0);
+  o.max_iterations = r.integer("max_iterations", o.max_iterations, 1, 10000000);
+  o.initial_increment = r.number("initial_increment", o.initial_increment, 1e-9, 1.0);
+  o.min_increment = r.number("min_increment", o.min_increment, 1e-15, 1.0);
+  o.initial_proximal_step = r.number("initial_proximal_step_ms2", o.initial_proximal_step, 1e-20, 1e20);
+  if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
+  else r.record("trust_radius", "5% of the bounding-box diagonal");
+  o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
+  o.linear_solver = parse_linear_solver(r.choice("linear_solver", linear_solver_names(), std::string("auto")));
+  o.iterative_tolerance = r.number("iterative_tolerance", o.iterative_tolerance, 1e-16, 1e-1);
+}
+
 }  // namespace
 
 json scene_json_with_overrides(const fs::path& scene_file, const CommandLine& cl) {
@@ -140,7 +153,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     };
     const bool between = c.boolean("between_leaflets", true), self = c.boolean("self", true);
     if (!between && !self) c.fail("self", "true when between_leaflets is false", "false");
-    if (c.choice("model", {"penalty", "seed"}, std::string("penalty")) == "seed") {
+    const std::string contact_model = c.choice("model", {"penalty", "barrier", "seed"}, std::string("penalty"));
+    if (contact_model == "seed") {
       ContactOptions co;
       co.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
       co.penetration_stiffness = c.quantity("penetration_stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
@@ -154,8 +168,12 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       sc.contact = co;
     } else {
       PenaltyContactOptions po;
+      po.potential = contact_model == "barrier" ? ContactPotential::barrier : ContactPotential::penalty;
       po.separation = c.quantity("separation", Dimension::length, std::string("0.25 mm"), 1e-6, 1e3);
-      po.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("1000 N/m"), 1e-12, 1e12);
+      po.stiffness = c.quantity("stiffness", Dimension::stiffness,
+                                std::string(po.potential == ContactPotential::barrier ? "100 N/m" : "1000 N/m"), 1e-12, 1e12);
+      if (po.potential == ContactPotential::barrier)
+        po.offset = c.quantity("offset", Dimension::length, std::string("0 mm"), 0.0, 1e3);
       po.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
       po.edge_contact = c.boolean("edges", true);
       po.interior_edges = c.boolean("interior_edges", false);
@@ -163,8 +181,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       po.between_leaflets = between;
       po.self_contact = self;
       po.broad_phase = broad_phase();
-      if (po.detection != 0 && po.detection <= po.separation)
-        c.fail("detection", "0 (automatic) or more than separation", std::to_string(po.detection) + " mm");
+      if (po.detection != 0 && po.detection <= po.separation + po.offset)
+        c.fail("detection", "0 (automatic) or more than separation plus offset", std::to_string(po.detection) + " mm");
       sc.penalty_contact = po;
     }
     r.record("contact", c.finish());
@@ -309,14 +327,21 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   }
   {
     JsonReader s = r.object("solver");
-    const std::string type = s.choice("type", {"auto", "bdf2", "static"}, std::string("auto"));
-    sc.solver = type == "auto" ? SolverKind::automatic : (type == "bdf2" ? SolverKind::bdf2 : SolverKind::static_newton);
-    // Contact needs small, time-resolved steps: the static solver's steps let surfaces cross
-    // (penalty_contact.hpp), so "auto" means BDF2 and "static" is refused.
+    const std::string type = s.choice("type", {"auto", "bdf2", "static", "quasistatic"}, std::string("auto"));
+    sc.solver = type == "auto"          ? SolverKind::automatic
+                : type == "bdf2"        ? SolverKind::bdf2
+                : type == "quasistatic" ? SolverKind::quasistatic
+                                        : SolverKind::static_newton;
+    // Contact needs steps that cannot carry surfaces through each other: BDF2's small,
+    // time-resolved steps, or the quasi-static solver's collision-bounded line search. The
+    // static solver's steps let surfaces cross (penalty_contact.hpp), so "auto" means BDF2
+    // and "static" is refused; the seed's contact law has no energy for the quasi-static merit.
     if (sc.contact || sc.penalty_contact) {
       if (sc.solver == SolverKind::static_newton)
-        s.fail("type", "bdf2 or auto when the scene has contact (static steps let surfaces cross)", "static");
-      sc.solver = SolverKind::bdf2;
+        s.fail("type", "bdf2, quasistatic or auto when the scene has contact (static steps let surfaces cross)", "static");
+      if (sc.solver == SolverKind::quasistatic && sc.contact)
+        s.fail("type", "bdf2 or auto with the seed's contact model (it has no energy)", "quasistatic");
+      if (sc.solver == SolverKind::automatic) sc.solver = SolverKind::bdf2;
     }
     // Both option blocks are read (and validated) whichever solver runs, so that a scene
     // can carry both and be switched with --solver.
@@ -326,6 +351,9 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     JsonReader st = s.object("static");
     parse_static(st, sc.statics);
     s.record("static", st.finish());
+    JsonReader q = s.object("quasistatic");
+    parse_quasistatic(q, sc.quasistatic);
+    s.record("quasistatic", q.finish());
     r.record("solver", s.finish());
   }
   if (r.has("monitor")) {

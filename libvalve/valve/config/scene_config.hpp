@@ -17,6 +17,7 @@
 #include "valve/mechanics/penalty_contact.hpp"
 #include "valve/mechanics/damping.hpp"
 #include "valve/solver/bdf2.hpp"
+#include "valve/solver/quasistatic_solver.hpp"
 #include "valve/solver/static_solver.hpp"
 
 namespace valve {
@@ -24,7 +25,7 @@ namespace valve {
 enum class ModelKind { mass_spring, membrane_fe };
 /// automatic: static equilibrium first (fast), dynamic BDF2 from the rest state if the static
 /// solve does not converge. bdf2 alone also gives the time history.
-enum class SolverKind { automatic, bdf2, static_newton };
+enum class SolverKind { automatic, bdf2, static_newton, quasistatic };
 
 struct PressureConfig {
   double value = 0;  // MPa
@@ -133,6 +134,7 @@ struct SceneConfig {
   SolverKind solver = SolverKind::automatic;
   Bdf2Options bdf2;
   StaticOptions statics;
+  QuasistaticOptions quasistatic;
   MonitorConfig monitor;
   std::optional<StrainMarkerConfig> strain_markers;
   bool time_series = false;

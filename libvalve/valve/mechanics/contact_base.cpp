@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <iterator>
 
+#include "valve/mechanics/broad_phase.hpp"
+#include "valve/mesh/closest_point.hpp"
 #include "valve/mesh/topology.hpp"
 
 namespace valve {
 
-ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets)
-    : self_(self_contact), between_(between_leaflets), triangles_(mesh.triangles) {
+ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach)
+    : self_(self_contact), between_(between_leaflets), incidence_only_(rest_reach >= 0), triangles_(mesh.triangles) {
   const int n = mesh.num_nodes();
   leaflet_ = mesh.leaflet.size() == triangles_.size() ? mesh.leaflet : std::vector<int>(triangles_.size(), 0);
   node_leaflets_.assign(n, {});
@@ -31,6 +33,38 @@ ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool be
     sum += (mesh.points.row(e.a) - mesh.points.row(e.b)).norm();
   }
   mean_edge_ = topo.edges.empty() ? 0.0 : sum / topo.edges.size();
+  if (!incidence_only_) return;
+  const VecX x = flatten(mesh.points);
+  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach, BroadPhaseMethod::spatial_hash)) {
+    const Tri& tri = triangles_[t];
+    const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
+    const Vec3 w = closest_point_weights(p, a, b, c);
+    if ((p - (w[0] * a + w[1] * b + w[2] * c)).norm() <= rest_reach) rest_close_faces_.emplace_back(i, t);
+  }
+  std::sort(rest_close_faces_.begin(), rest_close_faces_.end());
+  std::vector<int> all(edges_.size());
+  for (size_t e = 0; e < edges_.size(); ++e) all[e] = static_cast<int>(e);
+  for (const auto& [e1, e2] : edge_box_pairs(x, edges_, all, rest_reach)) {
+    const auto [a, b] = edges_[e1];
+    const auto [c, d] = edges_[e2];
+    const auto [s1, s2] = closest_segment_parameters(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
+    const Vec3 gap = node3(x, a) + s1 * (node3(x, b) - node3(x, a)) - node3(x, c) - s2 * (node3(x, d) - node3(x, c));
+    if (gap.norm() > rest_reach) continue;
+    std::array<int, 4> key{a, b, c, d};
+    if (std::make_pair(c, d) < std::make_pair(a, b)) key = {c, d, a, b};
+    rest_close_edges_.push_back(key);
+  }
+  std::sort(rest_close_edges_.begin(), rest_close_edges_.end());
+}
+
+bool ContactTopology::close_at_rest(int node, int triangle) const {
+  return std::binary_search(rest_close_faces_.begin(), rest_close_faces_.end(), std::make_pair(node, triangle));
+}
+
+bool ContactTopology::edges_close_at_rest(int a, int b, int c, int d) const {
+  std::array<int, 4> key{std::min(a, b), std::max(a, b), std::min(c, d), std::max(c, d)};
+  if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
+  return std::binary_search(rest_close_edges_.begin(), rest_close_edges_.end(), key);
 }
 
 bool ContactTopology::in_ring(int node, int other) const {
@@ -48,15 +82,25 @@ bool ContactTopology::leaflet_rule_excludes(int node, int leaflet) const {
 
 bool ContactTopology::excluded(int node, int triangle) const {
   const Tri& t = triangles_[triangle];
-  for (int k = 0; k < 3; ++k)
-    if (in_ring(node, t[k])) return true;
+  bool near = false;  // the 1-ring rule
+  for (int k = 0; k < 3; ++k) near = near || in_ring(node, t[k]);
+  if (incidence_only_) {
+    if (node == t[0] || node == t[1] || node == t[2] || (near && close_at_rest(node, triangle))) return true;
+  } else if (near) {
+    return true;
+  }
   return leaflet_rule_excludes(node, leaflet_[triangle]);
 }
 
 bool ContactTopology::excluded_edges(int a, int b, int c, int d) const {
+  bool near = false;  // the 1-ring rule
   for (int u : {a, b})
-    for (int v : {c, d})
-      if (in_ring(u, v)) return true;
+    for (int v : {c, d}) near = near || in_ring(u, v);
+  if (incidence_only_) {
+    if (a == c || a == d || b == c || b == d || (near && edges_close_at_rest(a, b, c, d))) return true;
+  } else if (near) {
+    return true;
+  }
   // Both of an edge's nodes share its leaflet; the rule is decided by the first node.
   for (int l : node_leaflets_[c])
     if (on_leaflet(d, l)) return leaflet_rule_excludes(a, l);

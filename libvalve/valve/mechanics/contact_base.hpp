@@ -5,9 +5,14 @@
 //
 // ContactTopology: the part of contact detection that depends only on connectivity.
 // A node never touches a triangle that shares a vertex with the node's 1-ring: at a sharp
-// bend such triangles lie within any contact distance without touching. Pairs on the same
+// bend such triangles lie within any contact distance without touching. With a rest reach
+// (the barrier), only incident primitives (a node and its own triangles, edges sharing a
+// node) and pairs the 1-ring rule names that lie within that reach in the mesh's rest shape
+// are excluded: the other neighbours then push back when a fold brings them together, so a
+// sheet cannot fold through itself. Pairs on the same
 // leaflet are self-contact, pairs on different leaflets contact between leaflets; a node
 // on two leaflets (commissure corner) counts as between leaflets.
+#include <array>
 #include <utility>
 #include <vector>
 
@@ -41,7 +46,8 @@ class ContactForceTerm : public ForceTerm {
 
 class ContactTopology {
  public:
-  ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets);
+  /// `rest_reach` < 0: the 1-ring rule; >= 0: incidence, and 1-ring pairs within it at rest.
+  ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach = -1);
 
   /// True when node `node` must not interact with triangle `triangle`.
   bool excluded(int node, int triangle) const;
@@ -65,7 +71,13 @@ class ContactTopology {
   bool in_ring(int node, int other) const;
   bool leaflet_rule_excludes(int node, int leaflet) const;
 
+  bool close_at_rest(int node, int triangle) const;
+  bool edges_close_at_rest(int a, int b, int c, int d) const;
+
   bool self_, between_;
+  bool incidence_only_ = false;                          // rest reach given
+  std::vector<std::pair<int, int>> rest_close_faces_;    // (node, triangle) within it at rest, sorted
+  std::vector<std::array<int, 4>> rest_close_edges_;     // (a, b, c, d), a < b, c < d, (a, b) < (c, d), sorted
   std::vector<Tri> triangles_;
   std::vector<int> leaflet_;                     // per triangle
   std::vector<std::vector<int>> node_leaflets_;  // sorted

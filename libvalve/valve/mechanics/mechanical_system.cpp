@@ -88,6 +88,18 @@ bool MechanicalSystem::energy(const State& s, double& e) const {
   return true;
 }
 
+bool MechanicalSystem::internal_energy(const State& s, double& e, std::string* missing) const {
+  e = 0;
+  for (const auto& t : terms_) {
+    if (t->depends_on_velocity() || t->is_external_load()) continue;
+    if (!t->energy(s, e)) {
+      if (missing) *missing = t->name();
+      return false;
+    }
+  }
+  return true;
+}
+
 double MechanicalSystem::step_ratio(const VecX& x, const VecX& dx) const {
   double r = 0;
   for (const auto& t : terms_) r = std::max(r, t->step_ratio(x, dx));

@@ -50,6 +50,9 @@ class MechanicalSystem {
   VecX external_force(const State& s) const;
   /// Total potential energy if every non-velocity term has one.
   bool energy(const State& s, double& e) const;
+  /// The stored energy of the material and constraint terms (not the applied loads, not
+  /// damping); false, naming the first term without one in `missing`, if any lacks it.
+  bool internal_energy(const State& s, double& e, std::string* missing = nullptr) const;
 
   const BlockJacobian& dfdx() const { return dfdx_; }
   const BlockJacobian& dfdv() const { return dfdv_; }

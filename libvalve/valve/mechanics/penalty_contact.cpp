@@ -1,5 +1,6 @@
 #include "valve/mechanics/penalty_contact.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
@@ -13,9 +14,13 @@ namespace valve {
 
 void PenaltyContactOptions::validate() const {
   if (!(separation > 0)) throw InputError("contact.separation: expected > 0 mm, found " + std::to_string(separation));
+  if (!(offset >= 0)) throw InputError("contact.offset: expected >= 0 mm, found " + std::to_string(offset));
+  if (offset > 0 && potential != ContactPotential::barrier)
+    throw InputError("contact.offset: expected 0 for the penalty model (the barrier keeps an offset), found " +
+                     std::to_string(offset) + " mm");
   if (!(stiffness > 0)) throw InputError("contact.stiffness: expected > 0, found " + std::to_string(stiffness));
-  if (detection != 0 && !(detection > separation))
-    throw InputError("contact.detection: expected 0 (automatic) or more than the separation");
+  if (detection != 0 && !(detection > separation + offset))
+    throw InputError("contact.detection: expected 0 (automatic) or more than the separation (plus the offset)");
   if (!between_leaflets && !self_contact)
     throw InputError("contact: expected between_leaflets or self_contact (or both) to be true");
   if (interior_edges && !edge_contact)
@@ -24,10 +29,12 @@ void PenaltyContactOptions::validate() const {
 
 PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContactOptions& opt,
                                        const std::vector<char>& constrained)
-    : opt_(opt), topology_(mesh, opt.self_contact, opt.between_leaflets) {
+    : opt_(opt),
+      topology_(mesh, opt.self_contact, opt.between_leaflets,
+                opt.potential == ContactPotential::barrier ? opt.offset + opt.separation : -1.0) {
   opt_.validate();
   detection_ = opt_.detection != 0 ? opt_.detection
-                                   : opt_.separation + 4 * std::max(opt_.separation, 0.5 * topology_.mean_edge_length());
+                                   : reach() + 4 * std::max(opt_.separation, 0.5 * topology_.mean_edge_length());
   const int n = mesh.num_nodes();
   constrained_node_.assign(n, 0);
   query_.assign(n, 0);
@@ -115,7 +122,8 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   double ratio = 0;
   for (int i = 0; i < dx.size() / 3; ++i)
     ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
-  // Every candidate pair closes by less than 0.8 max(δ, d).
+  // Every candidate pair closes by less than 0.8 max(δ, d); with the barrier, by less than
+  // 0.8 (d − ξ), so that none reaches the offset.
   const double delta = opt_.separation;
   size_t k = 0;
   auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
@@ -126,7 +134,8 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
         const Vec3 relative = node3(dx, b) - node3(dx, a);
         closing = std::max(closing, g.normal.isZero() ? relative.norm() : g.normal.dot(relative));
       }
-    ratio = std::max(ratio, closing / (0.8 * std::max(delta, g.distance)));
+    const double room = barrier() ? std::max(g.distance - opt_.offset, 1e-300) : std::max(delta, g.distance);
+    ratio = std::max(ratio, closing / (0.8 * room));
   };
   const auto& tris = topology_.triangles();
   for (const auto& [i, t] : face_pairs_) check({i}, {tris[t][0], tris[t][1], tris[t][2]});
@@ -143,7 +152,7 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
   auto note_gap = [&](double d, const Vec3& first_minus_second) {
     if (gaps) gaps->push_back(PairGap{d, d > 1e-12 ? Vec3(first_minus_second / d) : Vec3::Zero()});
   };
-  const double delta = opt_.separation;
+  const double delta = reach();
   const auto& tris = topology_.triangles();
   for (const auto& [i, t] : face_pairs_) {
     const Tri& tri = tris[t];
@@ -176,24 +185,94 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     ct.weights[0] = 1 - s, ct.weights[1] = s, ct.weights[2] = -(1 - u), ct.weights[3] = -u;
     ct.distance = dist;
     ct.normal = dist > 1e-12 ? Vec3(diff / dist) : Vec3((xb - xa).cross(xd - xc).normalized());
+    ct.edge = true;
     if (ct.normal.allFinite()) out.push_back(ct);
   }
+}
+
+double PenaltyContactTerm::pair_energy(double d) const {
+  const double k = opt_.stiffness, delta = opt_.separation;
+  if (!barrier()) return d < delta ? k * std::pow(delta - d, 3) / (3 * delta) : 0.0;
+  const double s = d - opt_.offset;
+  if (s <= 0) return std::numeric_limits<double>::infinity();
+  if (s >= delta) return 0.0;
+  return -k * (s - delta) * (s - delta) * std::log(s / delta);
+}
+
+void PenaltyContactTerm::pair_force(double d, double& magnitude, double& slope) const {
+  const double k = opt_.stiffness, delta = opt_.separation;
+  magnitude = slope = 0;
+  if (!barrier()) {
+    if (d >= delta) return;
+    const double gap = delta - d;
+    magnitude = k * gap * gap / delta, slope = 2 * k * gap / delta;
+    return;
+  }
+  // Below s = 1e-9 ŝ the barrier is held at its value there: the step bound never lets a
+  // pair come that close; this only keeps the numbers finite.
+  const double s = std::max(d - opt_.offset, 1e-9 * delta);
+  if (s >= delta) return;
+  const double u = s - delta, l = std::log(s / delta);
+  magnitude = k * (2 * u * l + u * u / s);                    // −κ b'(s)
+  slope = k * (-2 * l - 4 * u / s + u * u / (s * s));          // κ b''(s)
+}
+
+PenaltyContactTerm::PairVector PenaltyContactTerm::pair_gradient(bool edge, const PairVector& y) const {
+  const Vec3 p0 = y.segment<3>(0), p1 = y.segment<3>(3), p2 = y.segment<3>(6), p3 = y.segment<3>(9);
+  double w[4];
+  Vec3 diff;
+  if (edge) {
+    const auto [s, u] = closest_segment_parameters(p0, p1, p2, p3);
+    diff = (p0 + s * (p1 - p0)) - (p2 + u * (p3 - p2));
+    w[0] = 1 - s, w[1] = s, w[2] = -(1 - u), w[3] = -u;
+  } else {
+    const Vec3 b = closest_point_weights(p0, p1, p2, p3);
+    diff = p0 - (b[0] * p1 + b[1] * p2 + b[2] * p3);
+    w[0] = 1, w[1] = -b[0], w[2] = -b[1], w[3] = -b[2];
+  }
+  const double d = diff.norm();
+  PairVector g = PairVector::Zero();
+  if (!(d > 1e-12)) return g;
+  double magnitude = 0, slope = 0;
+  pair_force(d, magnitude, slope);
+  for (int j = 0; j < 4; ++j) g.segment<3>(3 * j) = -magnitude * w[j] * (diff / d);
+  return g;
+}
+
+PenaltyContactTerm::PairMatrix PenaltyContactTerm::projected_pair_hessian(const Contact& c, const VecX& x) const {
+  PairVector y;
+  for (int j = 0; j < 4; ++j) y.segment<3>(3 * j) = node3(x, c.nodes[j]);
+  const double h = 1e-6;
+  PairMatrix H;
+  for (int k = 0; k < 12; ++k) {
+    PairVector yp = y, ym = y;
+    yp[k] += h;
+    ym[k] -= h;
+    H.col(k) = (pair_gradient(c.edge, yp) - pair_gradient(c.edge, ym)) / (2 * h);
+  }
+  const Eigen::SelfAdjointEigenSolver<PairMatrix> eig(0.5 * (H + H.transpose()));
+  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
 }
 
 void PenaltyContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
   std::vector<Contact> scratch;
   const std::vector<Contact>& contacts = contacts_at(s.x, scratch);
-  const double k = opt_.stiffness, delta = opt_.separation;
   stats_.active_pairs = static_cast<long>(contacts.size());
   stats_.closest_distance = -1;
   stats_.deepest_penetration = 0;
   for (const Contact& c : contacts) {
     stats_.closest_distance = stats_.closest_distance < 0 ? c.distance : std::min(stats_.closest_distance, c.distance);
-    const double gap = delta - c.distance;
-    stats_.deepest_penetration = std::max(stats_.deepest_penetration, gap);
-    const double magnitude = k * gap * gap / delta, slope = 2 * k * gap / delta;
+    stats_.deepest_penetration = std::max(stats_.deepest_penetration, reach() - c.distance);
+    double magnitude = 0, slope = 0;
+    pair_force(c.distance, magnitude, slope);
     for (int j = 0; j < 4; ++j) node3(f, c.nodes[j]) += magnitude * c.weights[j] * c.normal;
     if (!dfdx) continue;
+    if (barrier()) {
+      const PairMatrix H = projected_pair_hessian(c, s.x);
+      for (int j = 0; j < 4; ++j)
+        for (int l = 0; l < 4; ++l) dfdx->add(c.nodes[j], c.nodes[l], Mat3(-H.block<3, 3>(3 * j, 3 * l)));
+      continue;
+    }
     const Mat3 nn = c.normal * c.normal.transpose();
     for (int j = 0; j < 4; ++j)
       for (int l = 0; l < 4; ++l)
@@ -205,7 +284,7 @@ bool PenaltyContactTerm::energy(const State& s, double& e) const {
   std::vector<Contact> scratch;
   const std::vector<Contact>& contacts = contacts_at(s.x, scratch);
   double sum = 0;
-  for (const Contact& c : contacts) sum += opt_.stiffness * std::pow(opt_.separation - c.distance, 3) / (3 * opt_.separation);
+  for (const Contact& c : contacts) sum += pair_energy(c.distance);
   e += sum;
   return true;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 #include "valve/core/error.hpp"
@@ -211,27 +212,53 @@ SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, Mechanical
   return res;
 }
 
-SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
+// The equilibrium solvers (static, quasi-static) over the scene's load steps, each step from
+// where the last ended; `solve` takes one step from `previous` to `load`. Each step's solver
+// is new, so linear statistics add up.
+SimulationResult run_equilibrium(const SceneConfig& sc, const TriMesh& mesh, const SimulationHooks& hooks,
+                                 const std::string& name,
+                                 const std::function<SolverSummary(VecX&, double load, double previous)>& solve) {
   SimulationResult res;
   res.x = flatten(mesh.start_positions());
   double previous = 0;
   const std::vector<double> loads = load_steps(sc);
   for (size_t k = 0; k < loads.size(); ++k) {
     const double load = loads[k];
-    StaticOptions options = sc.statics;
-    if (load == 0) options.residual_reference_load = 1.0;
-    IncrementResult inc{load, solve_static(sys, res.x, options, load, previous)};
+    IncrementResult inc{load, solve(res.x, load, previous)};
     previous = load;
-    if (k == 0)
+    if (k == 0) {
       res.summary = inc.summary;
-    else
+    } else {
+      const LinearSolverStats before = res.summary.linear;
       res.summary.accumulate(inc.summary);
+      res.summary.linear.factorizations += before.factorizations;
+      res.summary.linear.solves += before.solves;
+      res.summary.linear.iterations += before.iterations;
+      res.summary.linear.failures += before.failures;
+      res.summary.linear.factor_seconds += before.factor_seconds;
+      res.summary.linear.solve_seconds += before.solve_seconds;
+    }
     res.increments.push_back(inc);
     if (hooks.on_increment) hooks.on_increment(static_cast<int>(k), res.x, inc);
     if (inc.summary.status != SolverStatus::ok) break;
   }
-  res.summary.solver = "static";
+  res.summary.solver = name;
   return res;
+}
+
+SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
+  return run_equilibrium(sc, mesh, hooks, "static", [&](VecX& x, double load, double previous) {
+    StaticOptions options = sc.statics;
+    if (load == 0) options.residual_reference_load = 1.0;
+    return solve_static(sys, x, options, load, previous);
+  });
+}
+
+SimulationResult run_quasistatic(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys,
+                                 const SimulationHooks& hooks) {
+  return run_equilibrium(sc, mesh, hooks, "quasistatic", [&](VecX& x, double load, double previous) {
+    return solve_quasistatic(sys, x, sc.quasistatic, load, previous);
+  });
 }
 
 }  // namespace
@@ -301,6 +328,8 @@ SimulationResult simulate(const SceneConfig& sc, const TriMesh& input_mesh, Mech
   const bool wants_dynamics = sc.solver == SolverKind::bdf2 || (sc.solver == SolverKind::automatic && hooks.observer_for_increment);
   if (wants_dynamics) {
     res = run_bdf2(sc, mesh, sys, hooks, monitor);
+  } else if (sc.solver == SolverKind::quasistatic) {
+    res = run_quasistatic(sc, mesh, sys, hooks);
   } else {
     res = run_static(sc, mesh, sys, hooks);
     if (sc.solver == SolverKind::automatic && (res.summary.status != SolverStatus::ok || !res.x.allFinite())) {

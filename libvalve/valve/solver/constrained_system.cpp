@@ -113,6 +113,13 @@ void SystemMatrix::build_maps(const BlockJacobian& dfdx, const BlockJacobian* df
   dfdv_revision_ = dfdv ? dfdv->pattern_revision() : -1;
 }
 
+double free_norm(const VecX& f, const std::vector<char>& constrained) {
+  double s = 0;
+  for (int i = 0; i < f.size(); ++i)
+    if (!constrained[i]) s += f[i] * f[i];
+  return std::sqrt(s);
+}
+
 const SparseMatrix& SystemMatrix::assemble(const BlockJacobian& dfdx, double c_x, const BlockJacobian* dfdv,
                                            double c_v, const VecX& mass, const std::vector<char>& constrained,
                                            bool symmetric, VecX& b) {

@@ -18,6 +18,9 @@ void apply_constraints(SparseMatrix& A, VecX& b, const std::vector<char>& constr
 /// (A + Aᵀ)/2.
 SparseMatrix symmetric_part(const SparseMatrix& A);
 
+/// Euclidean norm of f over the unconstrained dofs.
+double free_norm(const VecX& f, const std::vector<char>& constrained);
+
 /// For a compressed matrix whose pattern is structurally symmetric (each stored (i, j) has a
 /// stored (j, i)), the index of each stored entry's mirror; empty for any other pattern.
 /// O(nnz): columns are visited in order, so the mirrors in each column come in row order.

@@ -5,18 +5,9 @@
 #include <cmath>
 
 #include "valve/solver/constrained_system.hpp"
+#include "valve/solver/load_continuation.hpp"
 
 namespace valve {
-namespace {
-
-double free_norm(const VecX& f, const std::vector<char>& constrained) {
-  double s = 0;
-  for (int i = 0; i < f.size(); ++i)
-    if (!constrained[i]) s += f[i] * f[i];
-  return std::sqrt(s);
-}
-
-}  // namespace
 
 SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& opt, double load_target,
                            double load_start) {
@@ -108,45 +99,13 @@ SolverSummary solve_static(MechanicalSystem& sys, VecX& x, const StaticOptions& 
     return false;
   };
 
-  double load = load_start, dload = opt.initial_increment * (load_target - load_start);
-  if (load_target == load_start) dload = 0;
-  long increments = 0;
-  while (true) {
-    if (wall() > opt.max_wall_seconds) {
-      sum.status = SolverStatus::not_converged;
-      sum.reason = "max_wall_seconds reached";
-      break;
-    }
-    if (increments >= opt.max_increments) {
-      sum.status = SolverStatus::not_converged;
-      sum.reason = "max_increments reached";
-      break;
-    }
-    const double next = (dload == 0) ? load_target
-                                     : (std::abs(load_target - load) <= std::abs(dload) ? load_target : load + dload);
-    const VecX saved = x;
-    const long it_before = sum.newton_iterations;
-    if (newton(next)) {
-      ++increments;
-      load = next;
-      if (load == load_target) {
-        sum.status = SolverStatus::ok;
-        sum.reason = "residual below tolerance at the target load";
-        break;
-      }
-      if (sum.newton_iterations - it_before <= 6) dload *= 2;
-    } else {
-      x = saved;
-      ++sum.rejected_steps;
-      dload *= 0.5;
-      if (std::abs(dload) < opt.min_increment * std::abs(load_target - load_start) || dload == 0) {
-        sum.status = SolverStatus::not_converged;
-        sum.reason = "load increment fell below min_increment at load factor " + std::to_string(load);
-        break;
-      }
-    }
-  }
-  sum.steps = increments;
+  LoadContinuationOptions lc;
+  lc.initial_increment = opt.initial_increment;
+  lc.min_increment = opt.min_increment;
+  lc.max_increments = opt.max_increments;
+  lc.max_wall_seconds = opt.max_wall_seconds;
+  lc.fast_iterations = 6;
+  const double load = continue_load(x, load_start, load_target, lc, sum, wall, newton, [&] { return sum.newton_iterations; });
   sum.linear = solver->stats();
   const State s{x, v, load, 0.0};
   sys.evaluate(s, f, false, false);

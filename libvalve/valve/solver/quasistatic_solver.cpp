@@ -1,0 +1,139 @@
+#include "valve/solver/quasistatic_solver.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "valve/solver/constrained_system.hpp"
+#include "valve/solver/load_continuation.hpp"
+
+namespace valve {
+
+namespace {
+
+constexpr double kMinProximalStep = 1e-14, kMaxProximalStep = 1e14;
+
+}  // namespace
+
+SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const QuasistaticOptions& opt, double load_target,
+                                double load_start) {
+  const auto t_start = std::chrono::steady_clock::now();
+  auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
+  // Below kLargeSystemDofs the whole system (the pressure's stiffness is not symmetric) by
+  // BiCGStab on the LDLᵀ of its symmetric part, so that the last iterations are Newton's on
+  // f = 0 and converge quadratically (with the symmetric part alone, the frozen pressure made
+  // the tail linear: 1e-5 to 1e-6 took hundreds of iterations on the sample mitral closure);
+  // above, CHOLMOD's supernodal Cholesky of the symmetric part (linear_solver.hpp).
+  LinearSolverType type = opt.linear_solver;
+  if (type == LinearSolverType::automatic)
+    type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::ldlt_bicgstab : LinearSolverType::cholmod_llt;
+  auto solver = make_linear_solver(type, opt.iterative_tolerance, 2000, sys.num_dofs(), SystemSymmetry::symmetrized);
+  SolverSummary sum;
+  sum.solver = "quasistatic";
+  sum.linear_solver = solver->name();
+  {
+    double e = 0;
+    std::string missing;
+    if (!sys.internal_energy(State{x, VecX::Zero(x.size()), load_start, 0.0}, e, &missing)) {
+      sum.status = SolverStatus::failed;
+      sum.reason = "the quasi-static solver needs every term's energy; " + missing + " has none";
+      return sum;
+    }
+  }
+  const VecX v = VecX::Zero(x.size());
+  const auto& cons = sys.constrained();
+  const VecX& M = sys.dof_masses();
+  double trust = opt.trust_radius;
+  if (trust <= 0) {
+    const MatX3 p = unflatten(x);
+    trust = 0.05 * (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
+  }
+  SystemMatrix system_matrix;
+  VecX f, fe, dx, b, f_trial;
+  double delta = opt.initial_proximal_step;
+
+  // Newton iterations at a fixed load factor; true when the residual tolerance is met.
+  auto converge = [&](double load) -> bool {
+    double reference = free_norm(sys.external_force(State{x, v, load, 0.0}), cons);
+    for (int it = 0; it < opt.max_iterations; ++it) {
+      if (wall() > opt.max_wall_seconds) return false;
+      const State s{x, v, load, 0.0};
+      if (!sys.evaluate(s, f, true, false)) return false;
+      ++sum.jacobian_evaluations;
+      const double r = free_norm(f, cons);
+      if (!(reference > 0)) reference = std::max(r, 1e-300);
+      sum.relative_residual = r / reference;
+      if (sum.relative_residual <= opt.relative_residual_tolerance) return true;
+      fe = sys.external_force(s);  // frozen for this iteration (the follower pressure)
+      double pi0 = 0;
+      if (!sys.internal_energy(s, pi0) || !std::isfinite(pi0)) return false;
+      bool accepted = false;
+      while (!accepted) {
+        if (delta < kMinProximalStep) return false;
+        // δ H = M − δ ∂f/∂x (its symmetric part for a Cholesky), δ H Δ = δ f.
+        b = delta * f;
+        const SparseMatrix& A =
+            system_matrix.assemble(sys.dfdx(), -delta, nullptr, 0.0, M, cons, solver->needs_symmetric(), b);
+        if (!solver->factorize(A) || !solver->solve(b, dx) || !dx.allFinite()) {
+          delta *= 0.25;
+          continue;
+        }
+        ++sum.newton_iterations;
+        const double descent = f.dot(dx);  // −∇Φ·Δ
+        if (!(descent > 0)) {              // H not positive definite: not a descent direction
+          delta *= 0.25;
+          continue;
+        }
+        // The largest step the limits allow: the trust radius, then every term's step bound
+        // (the contact barrier's conservative collision bound).
+        double alpha = std::min(1.0, trust / std::max(largest_node_norm(dx), 1e-300));
+        const double ratio = sys.step_ratio(x, alpha * dx);
+        const bool limited = alpha < 1 || ratio > 1;
+        if (ratio > 1) alpha *= 0.99 / ratio;
+        const double mass_term = dx.dot(M.cwiseProduct(dx)) / (2 * delta);
+        for (int search = 0; search < 40 && !accepted; ++search, alpha *= 0.5) {
+          const VecX trial = x + alpha * dx;
+          double pi = 0;
+          if (!sys.internal_energy(State{trial, v, load, 0.0}, pi)) return false;
+          const double merit = pi - alpha * fe.dot(dx) + alpha * alpha * mass_term;
+          bool sufficient = std::isfinite(merit) && merit <= pi0 - opt.armijo * alpha * descent;
+          // Near equilibrium Φ_k, a model with the pressure frozen, need not fall along Newton's
+          // direction for f = 0 (the pressure's non-symmetric stiffness is in the direction,
+          // not in Φ_k); the residual does: |f| must then fall by the Armijo fraction.
+          if (!sufficient && std::isfinite(pi) && sys.evaluate(State{trial, v, load, 0.0}, f_trial, false, false))
+            sufficient = free_norm(f_trial, cons) <= (1 - opt.armijo * alpha) * r;
+          if (sufficient) {
+            x = trial;
+            accepted = true;
+            // A direction accepted at once earns less regularisation (more if the step was
+            // whole); one that needed cutting back, more.
+            if (search == 0)
+              delta = std::min(delta * (limited ? 2 : 4), kMaxProximalStep);
+            else if (search > 1)
+              delta *= 0.5;
+          }
+        }
+        if (!accepted) delta *= 0.25;
+      }
+    }
+    return false;
+  };
+
+  LoadContinuationOptions lc;
+  lc.initial_increment = opt.initial_increment;
+  lc.min_increment = opt.min_increment;
+  lc.max_wall_seconds = opt.max_wall_seconds;
+  lc.fast_iterations = 10;
+  // After a failed increment the regularisation starts afresh.
+  const double load = continue_load(x, load_start, load_target, lc, sum, wall, converge,
+                                    [&] { return sum.newton_iterations; }, [&] { delta = opt.initial_proximal_step; });
+  sum.linear = solver->stats();
+  sys.evaluate(State{x, v, load, 0.0}, f, false, false);
+  sum.max_free_force_N = sys.max_free_force(f);
+  sum.wall_seconds = wall();
+  sum.term_timings = sys.timings();
+  return sum;
+}
+
+}  // namespace valve

@@ -1,0 +1,60 @@
+#pragma once
+// Static equilibrium by Newton's method on an incremental potential: the closed valve as the
+// equilibrium it is, not as the end of a trajectory (no time-step error to resolve).
+//
+// Each iteration k at the state x_k minimises, along one Newton direction, the merit
+//     Φ_k(y) = Π(y) − f_ext(x_k)·(y − x_k) + (y − x_k)ᵀ M (y − x_k) / (2δ),
+// where Π is the stored energy of every material and constraint term (membrane, springs,
+// bending, chordae, contact barrier: MechanicalSystem::internal_energy), f_ext the applied
+// loads and M the lumped mass. Terms:
+// * Follower pressure: its force is frozen at x_k, so within an iteration it is a dead load
+//   with the potential −f_ext(x_k)·(y − x_k); the next iteration takes it at the new state.
+//   ∇Φ_k(x_k) = −f(x_k), the true residual, so a fixed point is the follower equilibrium.
+//   (An open sheet under a follower pressure has no potential of its own: the pressure's
+//   work depends on the path once the free edge moves.)
+// * The proximal (inertia) term M/δ regularises: it makes the Newton matrix
+//   H = −∂f/∂x + M/δ positive definite where the membrane is slack or compressed and
+//   shortens steps far from equilibrium. δ grows ×4 after a whole step taken at once (×2 when
+//   a step bound shortened it), halves when the line search had to cut twice, and shrinks ×4
+//   when H is not positive definite or the line search fails, so near equilibrium the
+//   iteration is Newton's (δ → ∞).
+// * Line search: from the largest step the limits allow (a trust radius on node moves, and
+//   every term's step_ratio: the contact barrier's conservative collision bound, so that no
+//   iterate ever intersects), halved until Φ_k falls by the Armijo fraction, or failing that
+//   the residual |f| does: near equilibrium Φ_k (the pressure frozen) need not fall along
+//   Newton's direction for f = 0, whose matrix holds the pressure's non-symmetric stiffness.
+//   Every accepted step lowers Φ_k or |f|; neither merit is ever allowed to rise on its own
+//   test, and the contact energy is finite at every iterate.
+// Load continuation: the load factor steps to the target, halving the increment when an
+// increment fails to converge within max_iterations.
+// Linear algebra: below 6,000 unknowns the whole system (with the pressure's non-symmetric
+// stiffness, so that the last iterations are Newton's on f = 0) by BiCGStab preconditioned
+// with the LDLᵀ of its symmetric part, one factorisation per direction; above, CHOLMOD's
+// Cholesky of the symmetric part. Symbolic analyses are kept while the pattern holds. A
+// direction that does not descend (∇Φ·Δ >= 0) counts as a failed factorisation.
+// Ends when |f_free| <= relative_residual_tolerance · |f_ext,free|.
+#include "valve/mechanics/mechanical_system.hpp"
+#include "valve/solver/linear_solver.hpp"
+#include "valve/solver/solver_summary.hpp"
+
+namespace valve {
+
+struct QuasistaticOptions {
+  double relative_residual_tolerance = 1e-6;
+  int max_iterations = 400;           // Newton iterations per load increment
+  double initial_proximal_step = 1e-2;  // δ0 in ms² (the M/δ term's "time step" squared)
+  double trust_radius = 0;            // mm: largest node move per iteration; 0 = 5 % of the bounding-box diagonal
+  double armijo = 1e-4;
+  double initial_increment = 1.0;     // first Δλ as a fraction of the load to apply
+  double min_increment = 1e-4;
+  double max_wall_seconds = 600;
+  LinearSolverType linear_solver = LinearSolverType::automatic;  // below: whole system by BiCGStab; above: CHOLMOD LLᵀ
+  double iterative_tolerance = 1e-6;  // BiCGStab's relative residual: a Newton direction needs no more
+};
+
+/// Solves from x (updated in place) at load factors from `load_start` up to `load_target`.
+/// Every term but the applied loads and damping needs an energy (else status failed).
+SolverSummary solve_quasistatic(MechanicalSystem& system, VecX& x, const QuasistaticOptions& options,
+                                double load_target = 1.0, double load_start = 0.0);
+
+}  // namespace valve
