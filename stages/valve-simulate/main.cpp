@@ -1,5 +1,5 @@
 // valve-simulate --scene SCENE.json --out DIR [--mesh FILE] [--model mass_spring|membrane_fe]
-//                [--pressure "80 mmHg"] [--solver bdf2|static] [--set key.path=value ...]
+//                [--pressure "80 mmHg"] [--solver bdf2|static|quasistatic] [--set key.path=value ...]
 //                [--time-series] [--quiet]
 // Simulates the scene (flags override its keys) and writes DIR/closed.sim.vtp (Displacement,
 // GreenStrain, StretchFiber, StretchCross, AreaRatio, and PK2Stress for the FE model),

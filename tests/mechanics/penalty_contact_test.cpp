@@ -156,8 +156,9 @@ TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the e
   opt.offset = 0.05;      // ξ
   opt.separation = 0.25;  // ŝ
   opt.stiffness = 0.1;    // κ
+  // The barrier excludes pairs within its reach in the rest shape: the sheets rest 1 mm apart.
   const TriMesh m = two_sheets(0.1);
-  PenaltyContactTerm c(m, opt, std::vector<char>(18, 0));
+  PenaltyContactTerm c(two_sheets(1.0), opt, std::vector<char>(18, 0));
   VecX x = flatten(m.points);
   c.update_couplings(x);
   // d = 0.1, s = d − ξ = 0.05: E = −κ (s − ŝ)² ln(s / ŝ), force −κ b'(s) on node 3 along +z.
@@ -177,10 +178,14 @@ TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the e
   CHECK(std::isinf(energy_of(c, through)));
   // f = −dE/dx in generic positions.
   check_force_is_minus_energy_gradient(c, x, 0.02, 1e-6);
+  // A pair within the reach in the rest shape is a neighbour, not a contact.
+  PenaltyContactTerm touching(m, opt, std::vector<char>(18, 0));
+  touching.update_couplings(x);
+  CHECK(forces(touching, x).norm() == 0);
   // The Jacobian is the pair's Hessian projected to positive semi-definite: as df/dx it is
   // symmetric and negative semi-definite, and along the node's own normal motion, where
   // κ b''(s) dominates, it is the finite-difference Jacobian.
-  PenaltyContactTerm cf(m, opt, std::vector<char>(18, 0));
+  PenaltyContactTerm cf(two_sheets(1.0), opt, std::vector<char>(18, 0));
   VecX z = flatten(m.points);
   node3(z, 3) = Vec3(0.6, 0.4, 0.12);
   cf.update_couplings(z);
@@ -201,7 +206,7 @@ TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the 
   opt.potential = ContactPotential::barrier;
   opt.offset = 0.1;
   const TriMesh m = two_sheets(0.3);
-  PenaltyContactTerm c(m, opt, std::vector<char>(18, 0));
+  PenaltyContactTerm c(two_sheets(1.0), opt, std::vector<char>(18, 0));
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1);
   int bounded = 0;

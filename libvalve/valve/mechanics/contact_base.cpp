@@ -82,24 +82,22 @@ bool ContactTopology::leaflet_rule_excludes(int node, int leaflet) const {
 
 bool ContactTopology::excluded(int node, int triangle) const {
   const Tri& t = triangles_[triangle];
-  bool near = false;  // the 1-ring rule
-  for (int k = 0; k < 3; ++k) near = near || in_ring(node, t[k]);
   if (incidence_only_) {
-    if (node == t[0] || node == t[1] || node == t[2] || (near && close_at_rest(node, triangle))) return true;
-  } else if (near) {
-    return true;
+    if (node == t[0] || node == t[1] || node == t[2] || close_at_rest(node, triangle)) return true;
+  } else {
+    for (int k = 0; k < 3; ++k)
+      if (in_ring(node, t[k])) return true;
   }
   return leaflet_rule_excludes(node, leaflet_[triangle]);
 }
 
 bool ContactTopology::excluded_edges(int a, int b, int c, int d) const {
-  bool near = false;  // the 1-ring rule
-  for (int u : {a, b})
-    for (int v : {c, d}) near = near || in_ring(u, v);
   if (incidence_only_) {
-    if (a == c || a == d || b == c || b == d || (near && edges_close_at_rest(a, b, c, d))) return true;
-  } else if (near) {
-    return true;
+    if (a == c || a == d || b == c || b == d || edges_close_at_rest(a, b, c, d)) return true;
+  } else {
+    for (int u : {a, b})
+      for (int v : {c, d})
+        if (in_ring(u, v)) return true;
   }
   // Both of an edge's nodes share its leaflet; the rule is decided by the first node.
   for (int l : node_leaflets_[c])

@@ -7,9 +7,9 @@
 // A node never touches a triangle that shares a vertex with the node's 1-ring: at a sharp
 // bend such triangles lie within any contact distance without touching. With a rest reach
 // (the barrier), only incident primitives (a node and its own triangles, edges sharing a
-// node) and pairs the 1-ring rule names that lie within that reach in the mesh's rest shape
-// are excluded: the other neighbours then push back when a fold brings them together, so a
-// sheet cannot fold through itself. Pairs on the same
+// node) and pairs within that reach in the mesh's rest shape (neighbours at a sharp bend,
+// leaflets joined along a commissure) are excluded: the other neighbours then push back when
+// a fold brings them together, so a sheet cannot fold through itself. Pairs on the same
 // leaflet are self-contact, pairs on different leaflets contact between leaflets; a node
 // on two leaflets (commissure corner) counts as between leaflets.
 #include <array>
@@ -46,7 +46,7 @@ class ContactForceTerm : public ForceTerm {
 
 class ContactTopology {
  public:
-  /// `rest_reach` < 0: the 1-ring rule; >= 0: incidence, and 1-ring pairs within it at rest.
+  /// `rest_reach` < 0: the 1-ring rule; >= 0: incidence, and pairs within it at rest.
   ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach = -1);
 
   /// True when node `node` must not interact with triangle `triangle`.

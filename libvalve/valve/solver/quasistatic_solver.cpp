@@ -55,7 +55,10 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
 
   // Newton iterations at a fixed load factor; true when the residual tolerance is met.
   auto converge = [&](double load) -> bool {
-    double reference = free_norm(sys.external_force(State{x, v, load, 0.0}), cons);
+    // Residuals are relative to the load this solve applies (at the target, so that a small
+    // first increment is not held to a tighter absolute tolerance); with none (annulus motion
+    // alone), to the increment's first residual.
+    double reference = free_norm(sys.external_force(State{x, v, load_target, 0.0}), cons);
     for (int it = 0; it < opt.max_iterations; ++it) {
       if (wall() > opt.max_wall_seconds) return false;
       const State s{x, v, load, 0.0};

@@ -28,9 +28,10 @@
 // Load continuation: the load factor steps to the target, halving the increment when an
 // increment fails to converge within max_iterations.
 // Linear algebra: below 6,000 unknowns the whole system (with the pressure's non-symmetric
-// stiffness, so that the last iterations are Newton's on f = 0) by BiCGStab preconditioned
-// with the LDLᵀ of its symmetric part, one factorisation per direction; above, CHOLMOD's
-// Cholesky of the symmetric part. Symbolic analyses are kept while the pattern holds. A
+// stiffness: the last iterations are then Newton's on f = 0, and far from equilibrium, where
+// leaflets swing through large rotations, the symmetric part alone gave directions that did
+// not converge on the aortic valve) by BiCGStab preconditioned with the LDLᵀ of its symmetric
+// part, one factorisation per direction; above, CHOLMOD's Cholesky of the symmetric part. Symbolic analyses are kept while the pattern holds. A
 // direction that does not descend (∇Φ·Δ >= 0) counts as a failed factorisation.
 // Ends when |f_free| <= relative_residual_tolerance · |f_ext,free|.
 #include "valve/mechanics/mechanical_system.hpp"
