@@ -3,8 +3,12 @@
 #include <algorithm>
 #include <vector>
 
+#include <fcntl.h>
 #include <openssl/evp.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <cstdio>
 #include <fstream>
@@ -26,9 +30,27 @@ WrittenFiles& written_files() {
   return w;
 }
 
+// A new, empty file beside `path` whose name no other process or host writing the same
+// folder can take (mkstemp), so that two cluster nodes writing one shared folder never write
+// into each other's temporary file.
 fs::path temp_sibling(const fs::path& path) {
-  return path.parent_path() /
-         ("." + path.filename().string() + ".tmp" + std::to_string(::getpid()));
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  std::string name = (dir / ("." + path.filename().string() + ".tmpXXXXXX")).string();
+  std::vector<char> buffer(name.begin(), name.end());
+  buffer.push_back('\0');
+  const int fd = ::mkstemp(buffer.data());
+  if (fd < 0) throw Error(path.string() + ": cannot create a temporary file beside it: " + std::strerror(errno));
+  ::close(fd);
+  return fs::path(buffer.data());
+}
+
+// Flushes a file's data (or a folder's entries) to the disk, so that a crash after the rename
+// leaves the whole new file, not an empty one under the final name.
+void sync_to_disk(const fs::path& path, bool directory) {
+  const int fd = ::open(path.c_str(), directory ? (O_RDONLY | O_DIRECTORY) : O_RDONLY);
+  if (fd < 0) return;  // nothing to sync through (a folder some filesystems do not open)
+  ::fsync(fd);
+  ::close(fd);
 }
 }  // namespace
 
@@ -42,8 +64,10 @@ void write_via_temp(const fs::path& path, const std::function<void(const fs::pat
     fs::remove(tmp, ec);
     throw;
   }
+  sync_to_disk(tmp, false);
   std::error_code ec;
   fs::rename(tmp, path, ec);
+  if (!ec) sync_to_disk(path.has_parent_path() ? path.parent_path() : fs::path("."), true);
   if (ec) {
     const std::string why = ec.message();  // before remove() overwrites ec
     std::error_code ignored;

@@ -47,7 +47,14 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
     }
     const std::string name = a.substr(2);
     if (is_in(switches, name)) {
-      values_[name].push_back("true");
+      // A bare switch is on; --switch=false (or 0, no, off) turns it off.
+      bool on = true;
+      if (eq != std::string::npos) {
+        if (value == "true" || value == "1" || value == "yes" || value == "on") on = true;
+        else if (value == "false" || value == "0" || value == "no" || value == "off") on = false;
+        else throw InputError("--" + name + ": expected true or false, found \"" + value + "\"");
+      }
+      switch_values_[name] = on;
     } else if (is_in(flags, name)) {
       if (eq == std::string::npos) {
         if (i + 1 >= argc) throw InputError("--" + name + ": expected a value, found the end of the command line");
@@ -101,7 +108,10 @@ std::string CommandLine::require(const std::string& flag) const {
   return *v;
 }
 
-bool CommandLine::has(const std::string& flag) const { return values_.count(flag) > 0; }
+bool CommandLine::has(const std::string& flag) const {
+  const auto on = switch_values_.find(flag);
+  return on != switch_values_.end() ? on->second : values_.count(flag) > 0;
+}
 
 StageSummary::StageSummary(std::string stage, fs::path out_dir)
     : stage_(std::move(stage)), out_(std::move(out_dir)), start_(process_start) {

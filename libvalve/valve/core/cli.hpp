@@ -16,7 +16,8 @@ struct HelpRequested {};
 
 class CommandLine {
  public:
-  /// `flags` lists the accepted --options taking a value; `switches` those without one.
+  /// `flags` lists the accepted --options taking a value; `switches` those without one
+  /// (--switch or --switch=true|false; has() says whether it is on).
   /// --help or -h anywhere throws HelpRequested before anything else is checked.
   /// A flag may repeat (get() returns the last value, get_all() every value in order).
   CommandLine(int argc, char** argv, const std::vector<std::string>& flags, const std::vector<std::string>& switches);
@@ -30,6 +31,7 @@ class CommandLine {
  private:
   std::string program_;
   std::map<std::string, std::vector<std::string>> values_;
+  std::map<std::string, bool> switch_values_;  // the last --switch[=true|false] of each
   std::vector<std::string> positional_;
 };
 
