@@ -73,7 +73,9 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       if (!sys.internal_energy(s, pi0) || !std::isfinite(pi0)) return false;
       bool accepted = false;
       while (!accepted) {
-        if (delta < kMinProximalStep) return false;
+        // The wall-time limit holds within an iteration too: one whose directions keep failing
+        // factorises again and again.
+        if (delta < kMinProximalStep || wall() > opt.max_wall_seconds) return false;
         // δ H = M − δ ∂f/∂x (its symmetric part for a Cholesky), δ H Δ = δ f.
         b = delta * f;
         const SparseMatrix& A =
