@@ -99,8 +99,7 @@ AbaqusModel read_abaqus_inp(const std::filesystem::path& path) {
           "*PLASTIC", "*USER MATERIAL", "*DEPVAR", "*TRANSVERSE SHEAR", "*DAMPING", "*EXPANSION", "*MULLINS EFFECT"};
       if (material && std::find(kMaterialOptions.begin(), kMaterialOptions.end(), keyword) != kMaterialOptions.end()) {
         AbaqusModel::MaterialOption option;
-        option.keyword = keyword;
-        for (std::size_t i = 1; i < words.size(); ++i) option.words.push_back(upper(words[i]));
+        for (const auto& w : words) option.words.push_back(upper(w));
         option.line = number;
         material->options.push_back(option);
         block = Block::material_option;
@@ -296,10 +295,14 @@ TriMesh shell_mesh(const AbaqusModel& model, const std::string& annulus_set, con
   return mesh;
 }
 
+namespace {
+bool is_line_element(const std::string& type) { return type == "T3D2" || type == "B31" || type == "T3D3"; }
+}  // namespace
+
 std::vector<std::pair<int, int>> line_elements(const AbaqusModel& model) {
   std::vector<std::pair<int, int>> out;
   for (const auto& b : model.blocks)
-    if (b.type == "T3D2" || b.type == "B31" || b.type == "T3D3")
+    if (is_line_element(b.type))
       for (const auto& e : b.nodes) out.emplace_back(model.row_of_node.at(e.front()), model.row_of_node.at(e.back()));
   return out;
 }
@@ -313,8 +316,8 @@ std::string quote_numbers(const std::vector<double>& data) {
 }
 
 std::string option_text(const AbaqusModel::MaterialOption& o) {
-  std::string text = o.keyword;
-  for (const auto& w : o.words) text += ", " + w;
+  std::string text;
+  for (const auto& w : o.words) text += (text.empty() ? "" : ", ") + w;
   return text;
 }
 
@@ -326,18 +329,18 @@ std::string source_line(const AbaqusModel::Material& m, const AbaqusModel::Mater
 
 const AbaqusModel::MaterialOption* find_option(const AbaqusModel::Material& m, const std::string& keyword) {
   for (const auto& o : m.options)
-    if (o.keyword == keyword) return &o;
+    if (o.keyword() == keyword) return &o;
   return nullptr;
 }
 
-bool has(const AbaqusModel::MaterialOption& o, const std::string& word) {
-  return std::find(o.words.begin(), o.words.end(), word) != o.words.end();
-}
-
-std::string option_value(const AbaqusModel::MaterialOption& o, const std::string& key) {
-  for (const auto& w : o.words)
-    if (w.rfind(key + "=", 0) == 0) return trim(w.substr(key.size() + 1));
-  return "";
+// The *Material that a section names; InputError naming the section when the deck has none.
+const AbaqusModel::Material& section_material(const AbaqusModel& model, const AbaqusModel::Section& section,
+                                              const std::string& file) {
+  const auto material = model.materials.find(upper(section.material));
+  if (material == model.materials.end())
+    throw_input_error(file, "*" + std::string(section.kind == "SHELL" ? "Shell" : "Solid") + " Section, elset=" + section.elset,
+                      "a *Material named " + section.material, "none");
+  return material->second;
 }
 
 std::string mpa(double v) { return format_number(v) + " MPa"; }
@@ -346,7 +349,8 @@ std::string per_mpa(double v) { return format_number(v) + " 1/MPa"; }
 [[noreturn]] void not_modelled(const AbaqusModel::Material& m, const std::string& file, const std::string& expected) {
   std::string found;
   for (const auto& o : m.options)
-    if (o.keyword != "*DENSITY" && o.keyword != "*DEPVAR" && o.keyword != "*TRANSVERSE SHEAR" && o.keyword != "*DAMPING")
+    if (o.keyword() != "*DENSITY" && o.keyword() != "*DEPVAR" && o.keyword() != "*TRANSVERSE SHEAR" &&
+        o.keyword() != "*DAMPING")
       found += (found.empty() ? "" : "; ") + option_text(o);
   throw_input_error(file, "*Material, name=" + m.name + " (line " + std::to_string(m.line) + ")", expected,
                     found.empty() ? "no constitutive option" : found);
@@ -367,7 +371,7 @@ nlohmann::json leaflet_material_json(const AbaqusModel::Material& m, const std::
       "*Hyperelastic, NEO HOOKE)";
   nlohmann::json j = {{"name", m.name}};
   const std::string name = upper(m.name);
-  if (const auto* o = find_option(m, "*ANISOTROPIC HYPERELASTIC"); o && has(*o, "USER")) {
+  if (const auto* o = find_option(m, "*ANISOTROPIC HYPERELASTIC"); o && has_word(o->words, "USER")) {
     j["source"] = source_line(m, *o, file) + "; the branch of Leaflet_Material.f its name selects";
     if (name.rfind("VUANISO_ISO", 0) == 0) {
       need_values(m, *o, 4, file);
@@ -388,7 +392,7 @@ nlohmann::json leaflet_material_json(const AbaqusModel::Material& m, const std::
     } else {
       not_modelled(m, file, expected);
     }
-  } else if (const auto* h = find_option(m, "*HYPERELASTIC"); h && has(*h, "NEO HOOKE")) {
+  } else if (const auto* h = find_option(m, "*HYPERELASTIC"); h && has_word(h->words, "NEO HOOKE")) {
     need_values(m, *h, 1, file);
     j["source"] = source_line(m, *h, file) + "; NEO HOOKE C10 (Ī1 − 3) is C0/2 (Ī1 − 3) with C0 = 2 C10";
     j["law"] = "iso_exponential";
@@ -405,8 +409,8 @@ nlohmann::json leaflet_material_json(const AbaqusModel::Material& m, const std::
 nlohmann::json chord_law_json(const AbaqusModel::Material& m, const std::string& file) {
   const std::string expected = "a chord law valve models (*Hyperelastic, OGDEN or NEO HOOKE, or *Elastic)";
   nlohmann::json j;
-  if (const auto* h = find_option(m, "*HYPERELASTIC"); h && has(*h, "OGDEN")) {
-    const std::string n_text = option_value(*h, "N");
+  if (const auto* h = find_option(m, "*HYPERELASTIC"); h && has_word(h->words, "OGDEN")) {
+    const std::string n_text = parameter(h->words, "N");
     const int n = n_text.empty() ? 1 : std::atoi(n_text.c_str());
     if (n < 1 || n > 3)
       throw_input_error(file, "*Material, name=" + m.name + " " + option_text(*h), "OGDEN with N = 1..3", "N=" + n_text);
@@ -421,14 +425,15 @@ nlohmann::json chord_law_json(const AbaqusModel::Material& m, const std::string&
       j["alpha"].push_back(h->data[2 * k + 1]);
       j["D"].push_back(per_mpa(h->data[2 * n + k]));
     }
-  } else if (h && has(*h, "NEO HOOKE")) {
+  } else if (h && has_word(h->words, "NEO HOOKE")) {
     need_values(m, *h, 1, file);
     j["source"] = source_line(m, *h, file) + "; NEO HOOKE is Ogden N = 1 with mu = 2 C10, alpha = 2";
     j["law"] = "ogden";
     j["mu"] = {mpa(2 * h->data[0])};
     j["alpha"] = {2.0};
     j["D"] = {per_mpa(h->data.size() > 1 ? h->data[1] : 0.0)};
-  } else if (const auto* e = find_option(m, "*ELASTIC"); e && !has(*e, "TYPE=ENGINEERING CONSTANTS") && !has(*e, "TYPE=ORTHOTROPIC")) {
+  } else if (const auto* e = find_option(m, "*ELASTIC");
+             e && !has_word(e->words, "TYPE=ENGINEERING CONSTANTS") && !has_word(e->words, "TYPE=ORTHOTROPIC")) {
     need_values(m, *e, 1, file);
     j["source"] = source_line(m, *e, file);
     j["law"] = "linear";
@@ -458,12 +463,8 @@ nlohmann::json leaflet_materials_json(const AbaqusModel& model, const std::strin
     }
     if (!section)
       throw_input_error(file, "*Element, elset=" + b.elset, "a *Shell Section for every shell element block", "none");
-    const auto material = model.materials.find(upper(section->material));
-    if (material == model.materials.end())
-      throw_input_error(file, "*Shell Section, elset=" + section->elset, "a *Material named " + section->material,
-                        "none");
     list.push_back({{"leaflets", {leaflet}},
-                    {"material", leaflet_material_json(material->second, file)},
+                    {"material", leaflet_material_json(section_material(model, *section, file), file)},
                     {"thickness", format_number(section->value) + " mm"}});
     ++leaflet;
   }
@@ -511,7 +512,7 @@ ChordaeNetwork truss_chordae(const AbaqusModel& model, const std::vector<int>& m
       for (int id : set->second) section_of[id] = &s;
   }
   for (const auto& b : model.blocks) {
-    if (b.type != "T3D2" && b.type != "B31" && b.type != "T3D3") continue;
+    if (!is_line_element(b.type)) continue;
     for (std::size_t k = 0; k < b.nodes.size(); ++k) {
       ChordSegment seg;
       seg.from = point(model.row_of_node.at(b.nodes[k].front()));
@@ -520,11 +521,9 @@ ChordaeNetwork truss_chordae(const AbaqusModel& model, const std::vector<int>& m
       if (const auto it = section_of.find(b.ids[k]); it != section_of.end()) {
         const AbaqusModel::Section& s = *it->second;
         seg.area = s.value;
-        const auto material = model.materials.find(upper(s.material));
-        if (material == model.materials.end())
-          throw_input_error(file, "*Solid Section, elset=" + s.elset, "a *Material named " + s.material, "none");
-        seg.material = material->second.name;
-        if (!net.materials.count(seg.material)) net.materials[seg.material] = chord_law_json(material->second, file);
+        const AbaqusModel::Material& material = section_material(model, s, file);
+        seg.material = material.name;
+        if (!net.materials.count(seg.material)) net.materials[seg.material] = chord_law_json(material, file);
       }
       net.segments.push_back(seg);
     }

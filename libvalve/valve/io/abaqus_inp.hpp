@@ -45,8 +45,8 @@ struct AbaqusModel {
   };
   std::vector<Section> sections;  // in file order
   struct MaterialOption {
-    std::string keyword;             // upper case, e.g. "*HYPERELASTIC"
-    std::vector<std::string> words;  // the keyword line's parameters, upper case, e.g. "OGDEN", "N=3"
+    std::vector<std::string> words;  // the keyword line, upper case, e.g. "*HYPERELASTIC", "OGDEN", "N=3"
+    const std::string& keyword() const { return words.front(); }
     std::vector<double> data;        // every number of its data lines
     int line = 0;
   };

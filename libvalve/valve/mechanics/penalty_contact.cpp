@@ -144,6 +144,31 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   return ratio;
 }
 
+namespace {
+
+// The closest points of a pair: node p0 and triangle (p1, p2, p3), or edges (p0, p1) and
+// (p2, p3). `diff` runs from the second side's closest point to the first's; ∇d = w_j n per node.
+struct PairGeometry {
+  Vec3 diff;
+  double weights[4];
+};
+
+PairGeometry pair_geometry(bool edge, const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
+  PairGeometry g;
+  if (edge) {
+    const auto [s, u] = closest_segment_parameters(p0, p1, p2, p3);
+    g.diff = (p0 + s * (p1 - p0)) - (p2 + u * (p3 - p2));
+    g.weights[0] = 1 - s, g.weights[1] = s, g.weights[2] = -(1 - u), g.weights[3] = -u;
+  } else {
+    const Vec3 w = closest_point_weights(p0, p1, p2, p3);
+    g.diff = p0 - (w[0] * p1 + w[1] * p2 + w[2] * p3);
+    g.weights[0] = 1, g.weights[1] = -w[0], g.weights[2] = -w[1], g.weights[3] = -w[2];
+  }
+  return g;
+}
+
+}  // namespace
+
 void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps) const {
   out.clear();
   if (gaps) gaps->clear();
@@ -153,40 +178,30 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     if (gaps) gaps->push_back(PairGap{d, d > 1e-12 ? Vec3(first_minus_second / d) : Vec3::Zero()});
   };
   const double delta = reach();
+  // On the surface (d = 0) the direction is the face's normal, or the edges' common normal.
+  auto add = [&](bool edge, const int (&nodes)[4], const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3) {
+    const PairGeometry g = pair_geometry(edge, x0, x1, x2, x3);
+    const double d = g.diff.norm();
+    note_gap(d, g.diff);
+    if (d >= delta) return;
+    Contact ct;
+    for (int j = 0; j < 4; ++j) ct.nodes[j] = nodes[j], ct.weights[j] = g.weights[j];
+    ct.distance = d;
+    ct.normal = d > 1e-12 ? Vec3(g.diff / d)
+                          : Vec3(edge ? (x1 - x0).cross(x3 - x2).normalized() : (x2 - x1).cross(x3 - x1).normalized());
+    ct.edge = edge;
+    if (ct.normal.allFinite()) out.push_back(ct);
+  };
   const auto& tris = topology_.triangles();
   for (const auto& [i, t] : face_pairs_) {
     const Tri& tri = tris[t];
-    const Vec3 p = node3(x, i), xa = node3(x, tri[0]), xb = node3(x, tri[1]), xc = node3(x, tri[2]);
-    const Vec3 w = closest_point_weights(p, xa, xb, xc);
-    const Vec3 q = w[0] * xa + w[1] * xb + w[2] * xc;
-    const double d = (p - q).norm();
-    note_gap(d, p - q);
-    if (d >= delta) continue;
-    Contact ct;
-    ct.nodes[0] = i, ct.weights[0] = 1;
-    for (int j = 0; j < 3; ++j) ct.nodes[j + 1] = tri[j], ct.weights[j + 1] = -w[j];
-    ct.distance = d;
-    // On the surface the direction is the face normal.
-    ct.normal = d > 1e-12 ? Vec3((p - q) / d) : Vec3((xb - xa).cross(xc - xa).normalized());
-    if (ct.normal.allFinite()) out.push_back(ct);
+    const int nodes[4] = {i, tri[0], tri[1], tri[2]};
+    add(false, nodes, node3(x, i), node3(x, tri[0]), node3(x, tri[1]), node3(x, tri[2]));
   }
   const auto& edges = topology_.edges();
   for (const auto& [be, e] : edge_pairs_) {
-    const auto [a, b] = edges[be];
-    const auto [c, d] = edges[e];
-    const Vec3 xa = node3(x, a), xb = node3(x, b), xc = node3(x, c), xd = node3(x, d);
-    const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
-    const Vec3 diff = (xa + s * (xb - xa)) - (xc + u * (xd - xc));
-    const double dist = diff.norm();
-    note_gap(dist, diff);
-    if (dist >= delta) continue;
-    Contact ct;
-    ct.nodes[0] = a, ct.nodes[1] = b, ct.nodes[2] = c, ct.nodes[3] = d;
-    ct.weights[0] = 1 - s, ct.weights[1] = s, ct.weights[2] = -(1 - u), ct.weights[3] = -u;
-    ct.distance = dist;
-    ct.normal = dist > 1e-12 ? Vec3(diff / dist) : Vec3((xb - xa).cross(xd - xc).normalized());
-    ct.edge = true;
-    if (ct.normal.allFinite()) out.push_back(ct);
+    const int nodes[4] = {edges[be].first, edges[be].second, edges[e].first, edges[e].second};
+    add(true, nodes, node3(x, nodes[0]), node3(x, nodes[1]), node3(x, nodes[2]), node3(x, nodes[3]));
   }
 }
 
@@ -218,25 +233,14 @@ void PenaltyContactTerm::pair_force(double d, double& magnitude, double& slope) 
 }
 
 PenaltyContactTerm::PairVector PenaltyContactTerm::pair_gradient(bool edge, const PairVector& y) const {
-  const Vec3 p0 = y.segment<3>(0), p1 = y.segment<3>(3), p2 = y.segment<3>(6), p3 = y.segment<3>(9);
-  double w[4];
-  Vec3 diff;
-  if (edge) {
-    const auto [s, u] = closest_segment_parameters(p0, p1, p2, p3);
-    diff = (p0 + s * (p1 - p0)) - (p2 + u * (p3 - p2));
-    w[0] = 1 - s, w[1] = s, w[2] = -(1 - u), w[3] = -u;
-  } else {
-    const Vec3 b = closest_point_weights(p0, p1, p2, p3);
-    diff = p0 - (b[0] * p1 + b[1] * p2 + b[2] * p3);
-    w[0] = 1, w[1] = -b[0], w[2] = -b[1], w[3] = -b[2];
-  }
-  const double d = diff.norm();
-  PairVector g = PairVector::Zero();
-  if (!(d > 1e-12)) return g;
+  const PairGeometry g = pair_geometry(edge, y.segment<3>(0), y.segment<3>(3), y.segment<3>(6), y.segment<3>(9));
+  const double d = g.diff.norm();
+  PairVector gradient = PairVector::Zero();
+  if (!(d > 1e-12)) return gradient;
   double magnitude = 0, slope = 0;
   pair_force(d, magnitude, slope);
-  for (int j = 0; j < 4; ++j) g.segment<3>(3 * j) = -magnitude * w[j] * (diff / d);
-  return g;
+  for (int j = 0; j < 4; ++j) gradient.segment<3>(3 * j) = -magnitude * g.weights[j] * (g.diff / d);
+  return gradient;
 }
 
 PenaltyContactTerm::PairMatrix PenaltyContactTerm::projected_pair_hessian(const Contact& c, const VecX& x) const {

@@ -262,20 +262,31 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
   return mesh;
 }
 
-TriMesh generate_square_patch(const SquarePatchOptions& opt) {
-  if (opt.side <= 0) throw InputError("square patch: side: expected > 0");
-  const PlanarMesh pm = mesh_planar_domain(square_domain(opt.side), opt.mesh);
+namespace {
+
+// A planar mesh laid in the z = 0 plane (normals +z) as one free, interior leaflet with a
+// uniform fiber direction at `fiber_angle_deg` from +x; callers mark its boundary.
+TriMesh flat_sheet(const PlanarMesh& pm, double fiber_angle_deg) {
   TriMesh m;
   m.points.resize(pm.points.size(), 3);
   for (size_t i = 0; i < pm.points.size(); ++i) m.points.row(i) << pm.points[i].x(), pm.points[i].y(), 0;
   m.triangles = pm.triangles;
-  const double a = opt.fiber_angle_deg * kPi / 180;
+  const double a = fiber_angle_deg * kPi / 180;
   m.fiber.resize(m.num_triangles(), 3);
   for (int t = 0; t < m.num_triangles(); ++t) m.fiber.row(t) << std::cos(a), std::sin(a), 0;
   m.roles.assign(m.num_nodes(), NodeRole::free);
   m.boundary.assign(m.num_nodes(), BoundaryType::interior);
-  for (int i = 0; i < pm.num_boundary; ++i) m.boundary[i] = BoundaryType::free_edge;
   m.leaflet.assign(m.num_triangles(), 0);
+  return m;
+}
+
+}  // namespace
+
+TriMesh generate_square_patch(const SquarePatchOptions& opt) {
+  if (opt.side <= 0) throw InputError("square patch: side: expected > 0");
+  const PlanarMesh pm = mesh_planar_domain(square_domain(opt.side), opt.mesh);
+  TriMesh m = flat_sheet(pm, opt.fiber_angle_deg);
+  for (int i = 0; i < pm.num_boundary; ++i) m.boundary[i] = BoundaryType::free_edge;
   return m;
 }
 
@@ -293,17 +304,8 @@ TriMesh generate_clamped_disk(const DiskOptions& opt) {
   };
   d.signed_distance = [r](const Vec2& p) { return p.norm() - r; };
   const PlanarMesh pm = mesh_planar_domain(d, opt.mesh);
-  TriMesh m;
-  m.points.resize(pm.points.size(), 3);
-  for (size_t i = 0; i < pm.points.size(); ++i) m.points.row(i) << pm.points[i].x(), pm.points[i].y(), 0;
-  m.triangles = pm.triangles;
-  const double a = opt.fiber_angle_deg * kPi / 180;
-  m.fiber.resize(m.num_triangles(), 3);
-  for (int t = 0; t < m.num_triangles(); ++t) m.fiber.row(t) << std::cos(a), std::sin(a), 0;
-  m.roles.assign(m.num_nodes(), NodeRole::free);
-  m.boundary.assign(m.num_nodes(), BoundaryType::interior);
+  TriMesh m = flat_sheet(pm, opt.fiber_angle_deg);
   for (int i = 0; i < pm.num_boundary; ++i) m.boundary[i] = BoundaryType::attached, m.roles[i] = NodeRole::fixed;
-  m.leaflet.assign(m.num_triangles(), 0);
   return m;
 }
 
