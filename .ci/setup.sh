@@ -5,7 +5,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 PACKAGES=(build-essential cmake ccache pkg-config libinsighttoolkit5-dev libvtk9-dev libcgal-dev
           libeigen3-dev libsuitesparse-dev libopenblas0-pthread nlohmann-json3-dev catch2 libssl-dev
-          gnuplot-nox xvfb xauth libgl1-mesa-dri calculix-ccx)
+          gnuplot-nox xvfb xauth libgl1-mesa-dri calculix-ccx snakemake libnanoflann-dev)
 missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
