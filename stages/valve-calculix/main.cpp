@@ -1,5 +1,7 @@
 // valve-calculix --scene S.json --out DIR [--mesh M.vtp] [--pressure P] [--set key.path=value ...]
 //                [--ccx PATH] [--quiet]
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // Solves a scene with CalculiX (ccx, Debian's calculix-ccx) instead of valve's own solver, to
 // cross-check the membrane FE against an established code: writes DIR/model.inp (the scene as
 // thin S3 shells with *HYPERELASTIC, NEO HOOKE, fixed nodes and a follower pressure under
@@ -29,7 +31,8 @@ namespace fs = std::filesystem;
 
 int main(int argc, char** argv) {
   return run_stage("valve-calculix", kStageUsage, [&] {
-    CommandLine cl(argc, argv, {"scene", "out", "mesh", "pressure", "set", "ccx"}, {"quiet"});
+    CommandLine cl(argc, argv, {"scene", "out", "mesh", "pressure", "set", "ccx", "mesh-copies"}, {"quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     const fs::path scene_file = cl.require("scene");
     const fs::path out = fs::absolute(cl.require("out"));
     const json j = scene_json_with_overrides(scene_file, cl);
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
     }
     const MatX3 loaded = mesh.points + u;
     write_mesh(out / "closed.ccx.vtp", mesh, &loaded, {NamedArray{"Displacement", u, false}});
+    write_mesh_copies(out / "closed.ccx.vtp", mesh_copies, mesh, &loaded, {NamedArray{"Displacement", u, false}});
     summary.metrics()["max_displacement_mm"] = u.rowwise().norm().maxCoeff();
     summary.metrics()["mesh"] = "closed.ccx.vtp";
     summary.write();

@@ -1,6 +1,8 @@
 // valve-coaptation CLOSED.vtp --out DIR [--gap ray|nearest] [--threshold MM]
 //                  [--free-edge-offset MM] [--commissure-margin F] [--closed-min-height MM]
 //                  [--axis-point X,Y,Z --axis-direction X,Y,Z] [--config FILE.json] [--quiet]
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // Measures the coaptation of a closed valve of several leaflets (seed 4.2.5) again, without
 // simulating it again: another gap measure or threshold on a closure that took minutes, or a
 // valve closed elsewhere. The analysis is valve-simulate's (analysis/coaptation.hpp):
@@ -44,8 +46,9 @@ int main(int argc, char** argv) {
     const std::vector<std::string> keys = {"gap", "threshold", "free_edge_offset", "commissure_margin",
                                            "closed_min_height", "axis_point", "axis_direction"};
     CommandLine cl(argc, argv, {"out", "config", "gap", "threshold", "free-edge-offset", "commissure-margin",
-                                "closed-min-height", "axis-point", "axis-direction"},
+                                "closed-min-height", "axis-point", "axis-direction", "mesh-copies"},
                    {"quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     if (cl.positional().size() != 1)
       throw InputError("valve-coaptation: expected one CLOSED.vtp, found " + std::to_string(cl.positional().size()) +
                        " file arguments");
@@ -94,6 +97,7 @@ int main(int argc, char** argv) {
     summary.parameters() = args.used();
     summary.metrics()["coaptation"] = coaptation_metrics(result, options);
     write_mesh(out / "coaptation.vtp", mesh, &closed, {{kCoaptationGapArray, gap, false}, {kCoaptingArray, flag, false}});
+    write_mesh_copies(out / "coaptation.vtp", mesh_copies, mesh, &closed, {{kCoaptationGapArray, gap, false}, {kCoaptingArray, flag, false}});
     write_file_atomic(out / "coaptation_columns.csv", coaptation_columns_csv(result));
     summary.write();
     if (!cl.has("quiet")) std::printf("valve-coaptation: %s\n", result.report().c_str());

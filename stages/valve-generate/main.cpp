@@ -2,6 +2,8 @@
 //                [--side MM] [--diameter MM] [--circumference MM] [--name NAME] [--quiet]
 //                [--jitter F]   (stability tests: move interior nodes by up to F spacings -> slivers)
 //                [--relax-iterations N]   (triangulate+equalize rounds, default 60; 0 = raw random points)
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // Writes analytic meshes (seed 3.2.2.1, Fig. 3.1) as .vtp with FiberDirection, NodeRole,
 // BoundaryType and Leaflet arrays, plus generate.summary.json with their quality.
 // KIND: square_patch | clamped_disk (a flat disk of --diameter, rim fixed: pressure tests and
@@ -53,8 +55,9 @@ int main(int argc, char** argv) {
   return run_stage("valve-generate", kStageUsage, [&] {
     CommandLine cl(argc, argv,
                    {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name", "jitter",
-                    "relax-iterations", "gamma", "commissure-height", "graft-leaflet", "graft-width-pct", "graft-height-pct"},
+                    "relax-iterations", "gamma", "commissure-height", "graft-leaflet", "graft-width-pct", "graft-height-pct", "mesh-copies"},
                    {"quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     if (cl.positional().size() != 1)
       throw InputError("valve-generate: KIND: expected one of square_patch|aortic_leaflet|three_leaflet_valve|aortic_valve, found " +
                        std::to_string(cl.positional().size()) + " positional arguments");
@@ -133,6 +136,7 @@ int main(int argc, char** argv) {
       const auto q = summarize_quality(triangle_qualities(mesh.points, mesh.triangles));
       const std::string file = count == 1 ? name + ".vtp" : name + "_" + std::to_string(seed + k) + ".vtp";
       write_mesh(out / file, mesh);
+      write_mesh_copies(out / file, mesh_copies, mesh);
       nlohmann::json entry = {{"file", file}, {"seed", seed + k}, {"nodes", mesh.num_nodes()},
                               {"triangles", mesh.num_triangles()}, {"quality_mean", q.mean},
                               {"quality_min", q.min}, {"quality_below_0_6", q.below_0_6}};

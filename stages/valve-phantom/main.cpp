@@ -6,6 +6,8 @@
 //               --thickness 0.65 --chord-diameter 0.65 by default]
 // valve-phantom surface --mesh MEMBRANE.vtp [--lines CHORDAE.vtp] --out DIR [same imaging
 //               options] (e.g. a simulated closed valve: the synthetic closed scan)
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // A digital phantom with known ground truth: the parametric open mitral valve of
 // libvalve/imaging/mitral_phantom.hpp, or a finite element valve model from an Abaqus deck
 // (Texas TriValve: S4R leaflet shells split into triangles, T3D2 chordae; --frame takes the
@@ -180,7 +182,9 @@ int main(int argc, char** argv) {
     }
     flags.push_back("out");
     flags.push_back("config");
+    flags.push_back("mesh-copies");
     CommandLine cl(argc, argv, flags, {"no-chordae", "quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     const std::string kind = cl.positional().size() == 1 ? cl.positional()[0] : "";
     if (kind != "mitral" && kind != "ttv" && kind != "surface")
       throw InputError("valve-phantom: KIND: expected mitral, ttv or surface, found " +
@@ -233,6 +237,7 @@ int main(int argc, char** argv) {
       write_volume(out / image_file, volume);
     }
     write_mesh(out / (name + ".truth.vtp"), ph.leaflets);
+    write_mesh_copies(out / (name + ".truth.vtp"), mesh_copies, ph.leaflets);
     if (network) write_file_atomic(out / (name + ".chordae.json"), to_json(*network).dump(1) + "\n");
     const bool has_materials = ph.leaflet_materials.is_array() && !ph.leaflet_materials.empty();
     if (has_materials) write_file_atomic(out / (name + ".leaflet_materials.json"), ph.leaflet_materials.dump(1) + "\n");

@@ -2,6 +2,8 @@
 //              [--method isotropic|collapse] [--atrial-direction x,y,z] [--thickness 1]
 //              [--no-offset] [--input-is-membrane] [--subdivide 0|1|2] [--reference TRUTH.vtp]
 //              [--write-membrane] [--quiet]
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // From the closed surface of the leaflet tissue (valve-triangulate) to the membrane the
 // simulation uses (seed 5.2.2): keep the atrial face, move it half the thickness toward the
 // mid-surface, remesh to ~650 near-equilateral triangles, mark the annulus (fixed, attached)
@@ -46,8 +48,9 @@ nlohmann::json shape_json(const MeshShapeReport& r) {
 int main(int argc, char** argv) {
   return run_stage("valve-remesh", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "viewpoint_height", "thickness", "subdivide", "reference", "annulus_from", "annulus_tolerance"};
-    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference", "annulus-from", "annulus-tolerance"},
+    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference", "annulus-from", "annulus-tolerance", "mesh-copies"},
                    {"no-offset", "input-is-membrane", "write-membrane", "quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     if (cl.positional().size() != 1)
       throw InputError("valve-remesh: SURFACE: expected one surface mesh, found " + std::to_string(cl.positional().size()) + " arguments");
     const fs::path surface_file = cl.positional()[0];
@@ -135,6 +138,7 @@ int main(int argc, char** argv) {
         extra.push_back({"Error_mm", err, false});
       }
       write_mesh(out / file, level, nullptr, extra);
+      write_mesh_copies(out / file, mesh_copies, level, nullptr, extra);
       levels.push_back(entry);
     }
     m["meshes"] = levels;

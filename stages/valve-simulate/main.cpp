@@ -1,6 +1,8 @@
 // valve-simulate --scene SCENE.json --out DIR [--mesh FILE] [--model mass_spring|membrane_fe]
 //                [--pressure "80 mmHg"] [--solver bdf2|static|quasistatic] [--set key.path=value ...]
 //                [--time-series] [--quiet]
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // Simulates the scene (flags override its keys) and writes DIR/closed.sim.vtp (Displacement,
 // GreenStrain, StretchFiber, StretchCross, AreaRatio, and PK2Stress for the FE model),
 // optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json; with several
@@ -41,7 +43,8 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   limit_blas_threads_unless_set();
   return run_stage("valve-simulate", kStageUsage, [&] {
-    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set"}, {"time-series", "quiet"});
+    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set", "mesh-copies"}, {"time-series", "quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");
     const fs::path out = cl.require("out");
     json j = scene_json_with_overrides(scene_file, cl);
@@ -69,6 +72,7 @@ int main(int argc, char** argv) {
       std::error_code ec;
       for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv"})
         fs::remove(out / name, ec);
+      for (const auto& format : kMeshCopyFormats) fs::remove(out / ("closed.sim." + format), ec);
       if (fs::is_directory(out / "series", ec))
         for (const auto& e : fs::directory_iterator(out / "series", ec))
           if (e.path().filename().string().rfind("step_", 0) == 0 && e.path().extension() == ".vtp") fs::remove(e.path(), ec);
@@ -223,6 +227,7 @@ int main(int argc, char** argv) {
       summary.metrics()["coaptation"] = coaptation_metrics(*coaptation, coaptation_options);
     }
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
+    write_mesh_copies(out / "closed.sim.vtp", mesh_copies, mesh, &pos, arrays);
     if (coaptation) write_file_atomic(out / "coaptation_columns.csv", coaptation_columns_csv(*coaptation));
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);
 

@@ -1,5 +1,7 @@
 // valve-triangulate LABELS.nrrd --out DIR [--config FILE.json] [--name surface] [--labels 1]
 //                   [--smoothing-iterations 20] [--pass-band 0.1] [--largest-only] [--quiet]
+// --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
+// stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // Label map -> closed surface of the chosen labels (VTK discrete flying edges + windowed-sinc
 // smoothing), outward normals, physical LPS coordinates. Writes DIR/NAME.vtp and
 // triangulate.summary.json (triangles, regions, area, enclosed volume).
@@ -21,7 +23,8 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   return run_stage("valve-triangulate", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "labels", "smoothing_iterations", "pass_band", "largest_only"};
-    CommandLine cl(argc, argv, {"out", "config", "name", "labels", "smoothing-iterations", "pass-band"}, {"largest-only", "quiet"});
+    CommandLine cl(argc, argv, {"out", "config", "name", "labels", "smoothing-iterations", "pass-band", "mesh-copies"}, {"largest-only", "quiet"});
+    const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     if (cl.positional().size() != 1)
       throw InputError("valve-triangulate: LABELS: expected one label map, found " + std::to_string(cl.positional().size()) + " arguments");
     const fs::path labels_file = cl.positional()[0];
@@ -39,6 +42,7 @@ int main(int argc, char** argv) {
     const TriMesh surface = triangulate_labels(labels, o, &s);
     fs::create_directories(out);
     write_mesh(out / (name + ".vtp"), surface);
+    write_mesh_copies(out / (name + ".vtp"), mesh_copies, surface);
     const MeshShapeReport shape = describe_mesh_shape(surface);
 
     StageSummary summary("triangulate", out);

@@ -3,7 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "valve/mesh/closest_point.hpp"
+#include "valve/mesh/nearest_points.hpp"
 
 namespace valve {
 
@@ -25,11 +25,12 @@ IcpResult icp_point_to_point(const MatX3& source, const MatX3& target, const Icp
     res.transform.translation = (target.colwise().mean() - source.colwise().mean()).transpose();
   const int n = static_cast<int>(source.rows());
   Eigen::Matrix3Xd src(3, n), dst(3, n);
+  const NearestPoints nearest_target(target);
   for (int it = 0; it < options.max_iterations; ++it) {
     double sum = 0;
     for (int i = 0; i < n; ++i) {
       double d = 0;
-      const int best = nearest_point_index(target, res.transform.apply(Vec3(source.row(i).transpose())), &d);
+      const int best = nearest_target.nearest(res.transform.apply(Vec3(source.row(i).transpose())), &d);
       src.col(i) = source.row(i).transpose();
       dst.col(i) = target.row(best).transpose();
       sum += d * d;

@@ -3,8 +3,8 @@
 // nearest target point and solve for the best rotation and translation of the pairs in
 // closed form (Umeyama 1991, Eigen::umeyama without scaling). Used to register a simulated
 // valve to a closed-valve scan by their annuli (seed 5.2.2) or by all points, and a closed
-// annulus ring to an open one. Nearest neighbours are found by brute force: the point sets
-// here have at most a few thousand points.
+// annulus ring to an open one. Nearest neighbours come from a k-d tree of the target
+// (mesh/nearest_points.hpp), built once per registration.
 #include "valve/core/types.hpp"
 
 namespace valve {

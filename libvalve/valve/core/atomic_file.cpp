@@ -4,6 +4,7 @@
 #include <vector>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <openssl/evp.h>
 #include <unistd.h>
 
@@ -30,16 +31,33 @@ WrittenFiles& written_files() {
   return w;
 }
 
+// The process's file-creation mask, read without changing it (umask() can only be read by
+// setting it, which would race with other threads creating files).
+mode_t current_umask() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
+  return 022;
+}
+
 // A new, empty file beside `path` whose name no other process or host writing the same
-// folder can take (mkstemp), so that two cluster nodes writing one shared folder never write
-// into each other's temporary file.
+// folder can take (mkstemps), so that two cluster nodes writing one shared folder never write
+// into each other's temporary file. It keeps the extension, which writers go by (VTK's PLY
+// writer appends ".ply" to any other name; ITK picks the image format by it), and gets the permissions an ordinary new
+// file would (mkstemp's are 0600: a shared study folder would be unreadable to the group).
 fs::path temp_sibling(const fs::path& path) {
   const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  std::string name = (dir / ("." + path.filename().string() + ".tmpXXXXXX")).string();
+  // Every suffix from the name's first dot: ".nii.gz", ".seg.nrrd" and ".sim.vtp" all stay.
+  const std::string file = path.filename().string();
+  const size_t dot = file.find('.', 1);
+  const std::string extension = dot == std::string::npos ? "" : file.substr(dot);
+  std::string name = (dir / ("." + file.substr(0, dot) + ".tmpXXXXXX" + extension)).string();
   std::vector<char> buffer(name.begin(), name.end());
   buffer.push_back('\0');
-  const int fd = ::mkstemp(buffer.data());
+  const int fd = ::mkstemps(buffer.data(), static_cast<int>(extension.size()));
   if (fd < 0) throw Error(path.string() + ": cannot create a temporary file beside it: " + std::strerror(errno));
+  static const mode_t mode = 0666 & ~current_umask();
+  ::fchmod(fd, mode);
   ::close(fd);
   return fs::path(buffer.data());
 }

@@ -12,13 +12,16 @@
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOBJReader.h>
+#include <vtkOBJWriter.h>
 #include <vtkPLYReader.h>
+#include <vtkPLYWriter.h>
 #include <vtkPointData.h>
 #include <vtkPointSet.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkPolyDataWriter.h>
 #include <vtkSTLReader.h>
+#include <vtkSTLWriter.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 #include <vtkUnstructuredGrid.h>
@@ -365,12 +368,22 @@ void write_vtp(const fs::path& path, const fs::path& tmp, vtkPolyData* pd) {
   if (w->Write() != 1) throw Error(path.string() + ": VTK could not write the file");
 }
 
+template <class Writer, class Configure>
+int write_with(const fs::path& tmp, vtkPolyData* pd, Configure configure) {
+  vtkNew<Writer> w;
+  w->SetFileName(tmp.string().c_str());
+  w->SetInputData(pd);
+  configure(w.Get());
+  return w->Write();
+}
+
 }  // namespace
 
 void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* positions,
                 const std::vector<NamedArray>& extra) {
   const std::string ext = lower_extension(path);
-  if (ext != ".vtp" && ext != ".vtk") throw_input_error(path.string(), "extension", ".vtp or .vtk", "\"" + ext + "\"");
+  if (std::find(kMeshWriteExtensions.begin(), kMeshWriteExtensions.end(), ext) == kMeshWriteExtensions.end())
+    throw_input_error(path.string(), "extension", ".vtp|.vtk|.stl|.ply|.obj", "\"" + ext + "\"");
   const MatX3& x = positions ? *positions : mesh.points;
   if (!x.allFinite()) throw NumericalError(path.string() + ": refusing to write non-finite coordinates");
   vtkNew<vtkPolyData> pd;
@@ -405,18 +418,40 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
   }
   add_named_arrays(pd, extra, mesh.num_triangles(), "write_mesh");
   write_via_temp(path, [&](const fs::path& tmp) {
-    int ok = 1;
-    if (ext == ".vtp") {
-      write_vtp(path, tmp, pd);
+    if (ext == ".vtp") return write_vtp(path, tmp, pd);
+    int ok = 0;
+    if (ext == ".vtk") {
+      ok = write_with<vtkPolyDataWriter>(tmp, pd, [](vtkPolyDataWriter* w) { w->SetFileTypeToBinary(); });
+    } else if (ext == ".stl") {
+      ok = write_with<vtkSTLWriter>(tmp, pd, [](vtkSTLWriter* w) { w->SetFileTypeToBinary(); });
+    } else if (ext == ".ply") {
+      ok = write_with<vtkPLYWriter>(tmp, pd, [](vtkPLYWriter* w) { w->SetFileTypeToBinary(); });
     } else {
-      vtkNew<vtkPolyDataWriter> w;
-      w->SetFileName(tmp.string().c_str());
-      w->SetInputData(pd);
-      w->SetFileTypeToBinary();
-      ok = w->Write();
+      ok = write_with<vtkOBJWriter>(tmp, pd, [](vtkOBJWriter*) {});
     }
     if (ok != 1) throw Error(path.string() + ": VTK could not write the file");
   });
+}
+
+std::vector<std::string> parse_mesh_copies(const std::optional<std::string>& value) {
+  std::vector<std::string> formats;
+  if (!value) return formats;
+  std::stringstream items(*value);
+  for (std::string f; std::getline(items, f, ',');) {
+    if (std::find(kMeshCopyFormats.begin(), kMeshCopyFormats.end(), f) == kMeshCopyFormats.end())
+      throw InputError("--mesh-copies: expected formats from vtk|stl|ply|obj, found \"" + f + "\"");
+    if (std::find(formats.begin(), formats.end(), f) == formats.end()) formats.push_back(f);
+  }
+  if (formats.empty()) throw InputError("--mesh-copies: expected formats from vtk|stl|ply|obj, found \"\"");
+  return formats;
+}
+
+void write_mesh_copies(const fs::path& path, const std::vector<std::string>& formats, const TriMesh& mesh,
+                       const MatX3* positions, const std::vector<NamedArray>& extra) {
+  for (const auto& format : formats) {
+    fs::path copy = path;
+    write_mesh(copy.replace_extension("." + format), mesh, positions, extra);
+  }
 }
 
 void write_lines(const fs::path& path, const MatX3& x, const std::vector<std::pair<int, int>>& lines,
