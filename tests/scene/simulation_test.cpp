@@ -343,3 +343,50 @@ TEST_CASE("quasi-static: a flat clamped sheet under a small pressure converges (
   CHECK(w0 > 0.30 * 0.85);
   CHECK(w0 < 0.30 * 1.15);
 }
+
+TEST_CASE("max_wall_seconds bounds a whole closure, not each load increment", "[scene][solver]") {
+  // The seed's aortic leaflet (900 triangles) loaded in ten increments. The limit lies
+  // between the longest increment and the whole unlimited run, both measured here (the faster
+  // of two runs, so the test holds on any machine): each increment alone fits in it, so a
+  // per-increment limit would let every increment finish.
+  LeafletOptions o;
+  o.mesh.target_triangles = 900;
+  const TriMesh mesh = generate_aortic_leaflet(o);
+  for (const std::string solver : {"bdf2", "quasistatic"}) {
+    SECTION(solver) {
+      json j = {{"mesh", "unused.vtp"},
+                {"model", "membrane_fe"},
+                {"material", "aortic_leaflet"},
+                {"pressure", {{"value", "80 mmHg"}, {"direction", "along_normal"}}},
+                {"load", {{"increments", {0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0}}}},
+                {"solver", {{"type", solver}}}};
+      if (solver == "bdf2") j["damping"] = {{"type", "critical"}};
+      const SceneConfig unlimited = parse_scene(j, "unlimited.json", ".");
+      double total = 1e9, longest = 0;
+      size_t increments = 0;
+      for (int run = 0; run < 2; ++run) {
+        auto sys = build_system(unlimited, mesh);
+        const auto full = simulate(unlimited, mesh, *sys);
+        REQUIRE(full.summary.status == SolverStatus::ok);
+        double sum = 0, most = 0;
+        for (const auto& inc : full.increments) sum += inc.summary.wall_seconds, most = std::max(most, inc.summary.wall_seconds);
+        if (sum < total) total = sum, longest = most;
+        increments = full.increments.size();
+      }
+      const double limit = longest + 0.25 * (total - longest);
+      INFO(solver << ": " << total << " s in all, longest increment " << longest << " s, limit " << limit << " s");
+      REQUIRE(longest < 0.8 * total);  // the increments share the work
+      j["solver"][solver] = {{"max_wall_seconds", limit}};
+      const SceneConfig limited = parse_scene(j, "limited.json", ".");
+      auto sys = build_system(limited, mesh);
+      const auto res = simulate(limited, mesh, *sys);
+      CHECK(res.summary.status == SolverStatus::not_converged);
+      CHECK_THAT(res.summary.reason, Catch::Contains("max_wall_seconds"));
+      CHECK(res.increments.size() < increments);
+      double spent = 0;
+      for (const auto& inc : res.increments) spent += inc.summary.wall_seconds;
+      // Past the limit by at most one step or iteration (a fraction of an increment).
+      CHECK(spent < limit + longest);
+    }
+  }
+}

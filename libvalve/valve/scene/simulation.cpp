@@ -1,6 +1,7 @@
 #include "valve/scene/simulation.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -213,18 +214,21 @@ SimulationResult run_bdf2(const SceneConfig& sc, const TriMesh& mesh, Mechanical
 }
 
 // The equilibrium solvers (static, quasi-static) over the scene's load steps, each step from
-// where the last ended; `solve` takes one step from `previous` to `load`. Each step's solver
-// is new, so linear statistics add up.
+// where the last ended; `solve` takes one step from `previous` to `load` within `wall_seconds`
+// (what is left of the solver's max_wall_seconds: the limit holds for the whole closure, not
+// for each step). Each step's solver is new, so linear statistics add up.
+using EquilibriumStep = std::function<SolverSummary(VecX&, double load, double previous, double wall_seconds)>;
 SimulationResult run_equilibrium(const SceneConfig& sc, const TriMesh& mesh, const SimulationHooks& hooks,
-                                 const std::string& name,
-                                 const std::function<SolverSummary(VecX&, double load, double previous)>& solve) {
+                                 const std::string& name, double max_wall_seconds, const EquilibriumStep& solve) {
+  const auto start = std::chrono::steady_clock::now();
   SimulationResult res;
   res.x = flatten(mesh.start_positions());
   double previous = 0;
   const std::vector<double> loads = load_steps(sc);
   for (size_t k = 0; k < loads.size(); ++k) {
     const double load = loads[k];
-    IncrementResult inc{load, solve(res.x, load, previous)};
+    const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    IncrementResult inc{load, solve(res.x, load, previous, std::max(0.0, max_wall_seconds - spent))};
     previous = load;
     if (k == 0) {
       res.summary = inc.summary;
@@ -247,8 +251,10 @@ SimulationResult run_equilibrium(const SceneConfig& sc, const TriMesh& mesh, con
 }
 
 SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys, const SimulationHooks& hooks) {
-  return run_equilibrium(sc, mesh, hooks, "static", [&](VecX& x, double load, double previous) {
+  return run_equilibrium(sc, mesh, hooks, "static", sc.statics.max_wall_seconds,
+                         [&](VecX& x, double load, double previous, double wall_seconds) {
     StaticOptions options = sc.statics;
+    options.max_wall_seconds = wall_seconds;
     if (load == 0) options.residual_reference_load = 1.0;
     return solve_static(sys, x, options, load, previous);
   });
@@ -256,8 +262,11 @@ SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, Mechanic
 
 SimulationResult run_quasistatic(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys,
                                  const SimulationHooks& hooks) {
-  return run_equilibrium(sc, mesh, hooks, "quasistatic", [&](VecX& x, double load, double previous) {
-    return solve_quasistatic(sys, x, sc.quasistatic, load, previous);
+  return run_equilibrium(sc, mesh, hooks, "quasistatic", sc.quasistatic.max_wall_seconds,
+                         [&](VecX& x, double load, double previous, double wall_seconds) {
+    QuasistaticOptions options = sc.quasistatic;
+    options.max_wall_seconds = wall_seconds;
+    return solve_quasistatic(sys, x, options, load, previous);
   });
 }
 

@@ -46,6 +46,7 @@
 // by micrometres per step for ever, so the per-step rule never fires although the shape has
 // stopped changing (sample mitral closure with bending: every node within 0.007 mm over the
 // last 650 ms, 0.005 mm per step); the residual tolerance still applies.
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -71,8 +72,9 @@ struct Bdf2Options {
   int min_steps = 10;                    // never declare convergence earlier
   long max_steps = 200000;
   double max_time = 1e6;                 // ms of simulated time
-  double max_wall_seconds = 600;         // this solver's own; with solver "auto" a static
-                                         // attempt before it has its own (statics)
+  double max_wall_seconds = 600;         // over all run() calls of one integrator (every load
+                                         // increment of a closure); with solver "auto" a
+                                         // static attempt before it has its own (statics)
   bool adaptive = true;                  // false: fixed step = initial_step, no doubling
   ErrorEstimate error_estimate = ErrorEstimate::step_doubling;  // the seed's method by default
   LinearSolverType linear_solver = LinearSolverType::automatic;  // see kLargeSystemDofs
@@ -109,6 +111,7 @@ class Bdf2Integrator {
   std::function<void(const VecX& x, double time)> on_accepted;
 
  private:
+  const std::chrono::steady_clock::time_point created_ = std::chrono::steady_clock::now();  // max_wall_seconds counts from here
   struct History {
     VecX x, v, x_prev, v_prev;
     bool euler = false;  // no usable history: take an implicit Euler step
