@@ -3,10 +3,7 @@
 #include <cstdlib>
 
 #include "valve/core/error.hpp"
-
-#ifndef VALVE_SOURCE_CONFIG_DIR
-#define VALVE_SOURCE_CONFIG_DIR "configs"
-#endif
+#include "valve/core/install_layout.hpp"
 
 namespace valve {
 namespace fs = std::filesystem;
@@ -152,11 +149,6 @@ std::shared_ptr<const RodLaw> parse_rod_law(JsonReader& r) {
     }
   }
   return std::make_shared<OgdenRodLaw>(p);
-}
-
-fs::path config_directory() {
-  if (const char* env = std::getenv("VALVE_CONFIG_DIR"); env && *env) return env;
-  return VALVE_SOURCE_CONFIG_DIR;
 }
 
 namespace {

@@ -43,9 +43,6 @@ MaterialConfig parse_material(JsonReader& r);
 /// (Abaqus's *Hyperelastic, OGDEN: N = 1..3 terms; D may be shorter, missing terms are 0).
 std::shared_ptr<const RodLaw> parse_rod_law(JsonReader& r);
 
-/// Directory of the shipped presets: $VALVE_CONFIG_DIR, else the source tree's configs/.
-std::filesystem::path config_directory();
-
 /// Loads a material from a value that is an object, a preset name or a .json path
 /// (relative paths are taken from `base_dir`). `where` names the key for messages.
 /// An object with "base" (a preset name or .json path) starts from that material and

@@ -1,6 +1,7 @@
 #include "valve/config/scene_config.hpp"
 
 #include "valve/core/error.hpp"
+#include "valve/core/install_layout.hpp"
 
 namespace valve {
 namespace fs = std::filesystem;
