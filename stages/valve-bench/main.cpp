@@ -14,6 +14,7 @@
 #include "valve/config/scene_config.hpp"
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
+#include "valve/core/stage_arguments.hpp"
 #include "valve/core/error.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/validate.hpp"
@@ -34,8 +35,7 @@ int main(int argc, char** argv) {
     if (auto v = cl.get("mesh")) j["mesh"] = fs::absolute(*v).string();
     for (const auto& a : cl.get_all("set")) apply_override(j, a, scene_file.string());
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
-    const int reps = std::stoi(cl.get("repetitions").value_or("7"));
-    if (reps < 1 || reps > 1000) throw InputError("valve-bench: --repetitions: expected 1..1000, found " + std::to_string(reps));
+    const int reps = static_cast<int>(StageArguments(cl, {}).integer("repetitions", 7, 1, 1000));
     const TriMesh mesh = read_mesh(scene.mesh_path);
     validate_mesh(mesh, scene.mesh_path.string());
 

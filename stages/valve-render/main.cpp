@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "valve/core/cli.hpp"
+#include "valve/core/stage_arguments.hpp"
 #include "valve/core/error.hpp"
 #include "valve/io/render.hpp"
 #include "valve/pipeline/process.hpp"
@@ -48,26 +49,18 @@ int main(int argc, char** argv) {
       throw InputError("valve-render: expected one MESH.vtp argument, found " + std::to_string(cl.positional().size()));
     const fs::path mesh_file = cl.positional()[0];
     const fs::path out = cl.require("out");
+    StageArguments args(cl, {});
     RenderOptions opt;
     opt.array = cl.get("array").value_or("");
-    if (auto r = cl.get("range")) {
-      const auto parts = split(*r, ',');
-      try {
-        if (parts.size() != 2) throw std::invalid_argument("count");
-        opt.range_min = std::stod(parts[0]);
-        opt.range_max = std::stod(parts[1]);
-      } catch (const std::exception&) {
-        throw InputError("valve-render: --range: expected MIN,MAX, found \"" + *r + "\"");
-      }
-      if (!(opt.range_max > opt.range_min)) throw InputError("valve-render: --range: expected MIN < MAX, found \"" + *r + "\"");
+    if (const auto range = args.numbers("range", 2)) {
+      opt.range_min = (*range)[0];
+      opt.range_max = (*range)[1];
+      if (!(opt.range_max > opt.range_min)) throw InputError("valve-render: --range: expected MIN < MAX, found \"" + *cl.get("range") + "\"");
     }
     if (auto v = cl.get("views")) opt.views = split(*v, ',');
     opt.axis = cl.get("axis").value_or("z");
     opt.title = cl.get("title").value_or("");
-    if (auto s = cl.get("size")) {
-      opt.width = opt.height = std::atoi(s->c_str());
-      if (opt.width < 64 || opt.width > 8192) throw InputError("valve-render: --size: expected 64..8192 pixels, found \"" + *s + "\"");
-    }
+    opt.width = opt.height = static_cast<int>(args.integer("size", opt.width, 64, 8192));
     StageSummary summary("render", out);
     summary.add_input("mesh", mesh_file);
     summary.parameters() = {{"array", opt.array}, {"views", opt.views}, {"axis", opt.axis}, {"size", opt.width}};

@@ -181,6 +181,31 @@ std::vector<Vec3> StageArguments::points(const std::string& flag) {
   return out;
 }
 
+std::optional<std::vector<double>> StageArguments::numbers(const std::string& flag, size_t count) {
+  const auto r = raw(flag);
+  if (!r) return std::nullopt;
+  std::vector<double> out;
+  bool ok = true;
+  if (r->is_string()) {
+    for (const auto& p : split(r->get<std::string>(), ',')) {
+      double x = 0;
+      ok = ok && parse_double(p, &x) && std::isfinite(x);
+      out.push_back(x);
+    }
+  } else if (r->is_array()) {
+    for (const auto& it : *r) {
+      ok = ok && it.is_number();
+      out.push_back(it.is_number() ? it.get<double>() : 0.0);
+    }
+  } else {
+    ok = false;
+  }
+  if (!ok || out.size() != count)
+    throw InputError(where(flag) + ": expected " + std::to_string(count) + " numbers a,b,..., found " + shown(*r));
+  used_[key_of(flag)] = out;
+  return out;
+}
+
 std::vector<int> StageArguments::integers(const std::string& flag, const std::vector<int>& fallback) {
   const auto r = raw(flag);
   std::vector<int> out = fallback;

@@ -32,6 +32,8 @@ class StageArguments {
   std::optional<Vec3> vector3(const std::string& flag);
   /// Repeatable flag "x,y,z" / config array of [x, y, z].
   std::vector<Vec3> points(const std::string& flag);
+  /// Exactly `count` numbers "a,b" / [a, b]; nothing when unset.
+  std::optional<std::vector<double>> numbers(const std::string& flag, size_t count);
   /// A list of integers "1,2" / [1, 2].
   std::vector<int> integers(const std::string& flag, const std::vector<int>& fallback);
 
