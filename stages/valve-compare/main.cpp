@@ -26,6 +26,7 @@
 #include "valve/analysis/surface_distance.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/closest_point.hpp"
 #include "stage_usage.hpp"
@@ -57,6 +58,7 @@ int main(int argc, char** argv) {
                        " file arguments");
     const fs::path sim_file = cl.positional()[0], ref_file = cl.positional()[1];
     const fs::path out = cl.require("out");
+    Progress progress("valve-compare", cl.has("quiet"));
     const TriMesh sim = read_mesh(sim_file), ref = read_mesh(ref_file);
     const bool same_numbering = sim.num_nodes() == ref.num_nodes();
     const std::string mode =
@@ -146,6 +148,7 @@ int main(int argc, char** argv) {
     }
     write_mesh(out / "error.vtp", sim, &moved, arrays);
     summary.write();
+    progress.finish("distances written");
     if (!cl.has("quiet")) {
       std::printf("valve-compare: %d nodes, %s distance: mean %.3f mm, max %.3f mm, rms %.3f mm, p95 %.3f mm\n", headline.count,
                   mode == "nodes" ? "node-to-node" : "surface", headline.mean, headline.max, headline.rms, headline.p95);

@@ -18,6 +18,7 @@
 #include "valve/analysis/surface_distance.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/quality.hpp"
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
     const std::string annulus_from = args.text("annulus-from", "");
     const double annulus_tolerance = args.length_mm("annulus-tolerance", 2.0, 0, 50);
 
+    Progress progress("valve-remesh", cl.has("quiet"));
     const TriMesh surface = read_mesh(surface_file);
     TriMesh reference_mesh;
     if (!reference.empty()) reference_mesh = read_mesh(reference);  // fail early, before the work
@@ -148,6 +150,7 @@ int main(int argc, char** argv) {
       m["membrane_file"] = "membrane.vtp";
     }
     summary.write();
+    progress.finish("meshes written");
     if (!cl.has("quiet")) {
       const auto& e = levels[0];
       std::printf("valve-remesh: %d triangles, quality mean %.3f min %.3f, valence %.2f, %d boundary loop(s)%s -> %s\n",

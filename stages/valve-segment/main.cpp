@@ -17,6 +17,7 @@
 
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
 #include "valve/imaging/segmentation.hpp"
 #include "valve/io/image_io.hpp"
@@ -90,9 +91,12 @@ int main(int argc, char** argv) {
     read.working_copies = o.chordae_method == "hessian" ? 18 : 6;
     o.validate("valve-segment");
 
+    Progress progress("valve-segment", cl.has("quiet"));
     const Volume volume = read_volume(image_file, read);
+    progress.update(0.2, "image read");
     SegmentationSummary s;
     const LabelMap labels = segment_valve(volume, o, &s);
+    progress.update(0.9, "segmented");
     fs::create_directories(out);
     write_label_map(out / (name + ".nrrd"), labels);
 
@@ -115,6 +119,7 @@ int main(int argc, char** argv) {
         {"chordae_method", o.chordae_method},
         {"chordae_pieces", s.chordae_pieces}};
     summary.write();
+    progress.finish("labels written");
     if (!cl.has("quiet"))
       std::printf("valve-segment: threshold %.4g, leaflet %.1f mm3, chordae %.1f mm3 in %d pieces -> %s\n", s.threshold,
                   s.voxels_leaflet * voxel, s.voxels_chordae * voxel, s.chordae_pieces, (out / (name + ".nrrd")).string().c_str());
