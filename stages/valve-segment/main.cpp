@@ -6,8 +6,9 @@
 //               [--tube-scale 0.25] [--tube-ratio 0.5] [--tube-ridge-offset 0.35] [--sheet-ratio 0.1] [--tube-growth 2]
 //               [--notch-closing-radius 0.75] [--min-component 0.5] [--max-memory GB] [--quiet]
 // IMAGE: .nrrd .nhdr .mha .mhd .nii .nii.gz or a DICOM series directory. Writes the label
-// map DIR/NAME.nrrd (1 leaflet, 2 chordae, 3 other tissue) and segment.summary.json with the
-// threshold used, voxel counts and components. Chordae are told from leaflets by a
+// map DIR/NAME.nrrd (1 leaflet, 2 chordae, 3 other tissue), the same labels as a 3D Slicer
+// segmentation with named, coloured segments (DIR/NAME.seg.nrrd), and segment.summary.json
+// with the threshold used, voxel counts and components. Chordae are told from leaflets by a
 // morphological opening (chords thinner than leaflets) or by the Hessian's shape measure
 // (tubes vs sheets; for chords as thick as the leaflets). Physical coordinates (LPS, mm) throughout.
 #include <cstdio>
@@ -99,6 +100,10 @@ int main(int argc, char** argv) {
     progress.update(0.9, "segmented");
     fs::create_directories(out);
     write_label_map(out / (name + ".nrrd"), labels);
+    write_slicer_segmentation(out / (name + ".seg.nrrd"), labels,
+                              {{label_leaflet, "leaflet", Vec3(0.94, 0.82, 0.55)},
+                               {label_chordae, "chordae", Vec3(0.85, 0.25, 0.25)},
+                               {label_other_tissue, "other tissue", Vec3(0.55, 0.55, 0.60)}});
 
     StageSummary summary("segment", out);
     summary.add_input("image", image_file);
@@ -106,6 +111,7 @@ int main(int argc, char** argv) {
     const double voxel = s.cropped.spacing.prod();
     summary.metrics() = {
         {"labels", name + ".nrrd"},
+        {"slicer_segmentation", name + ".seg.nrrd"},
         {"threshold", s.threshold},
         {"threshold_method", o.threshold_method},
         {"size", {s.cropped.size[0], s.cropped.size[1], s.cropped.size[2]}},
