@@ -205,6 +205,8 @@ void write_itk(const fs::path& path, Image* image) {
     throw Error(path.string() + ": cannot write image: " + e.GetDescription());
   }
   fs::rename(tmp, path);
+  // A stage writing several images (labels.nrrd, labels.seg.nrrd) leaves none if a later one fails.
+  discard_on_failure(path);
 }
 }  // namespace
 
