@@ -82,7 +82,8 @@ std::string slicer_cli_xml(const std::string& program, const std::string& usage,
   size_t k = 0;
   for (; k < lines.size() && (k == 0 || (!lines[k].empty() && lines[k][0] == ' ')); ++k) synopsis += lines[k] + " ";
   const size_t synopsis_lines = k;
-  for (; k < lines.size(); ++k) prose += trim(lines[k]) + "\n";
+  // The options common to every stage (stage_usage.cmake) are Slicer's business, not the user's.
+  for (; k < lines.size() && lines[k].rfind("Every stage also takes:", 0) != 0; ++k) prose += trim(lines[k]) + "\n";
   // A one-line explanation of an option: the first prose line naming it.
   auto explained = [&](const std::string& flag, const std::string& shown) {
     for (size_t i = synopsis_lines; i < lines.size(); ++i)
@@ -106,9 +107,17 @@ std::string slicer_cli_xml(const std::string& program, const std::string& usage,
     std::string name = word.substr(0, word.find('.'));
     std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
     const std::string ext = extension_of(word);
-    // Slicer hands a node over as a file it writes: an image as a volume, a mesh as a model.
-    const std::string tag = name == "image" ? "image" : (ext == ".vtp" || name == "surface" || name == "mesh") ? "geometry" : "file";
-    x << "    <" << tag << (tag == "geometry" ? " type=\"model\" fileExtensions=\".vtp\"" : "") << ">\n"
+    // Slicer hands a node over as a file it writes: an image as a volume (a label map for
+    // LABELS), a mesh as a model.
+    const std::string tag = name == "image" || name == "labels" ? "image"
+                            : (ext == ".vtp" || name == "surface" || name == "mesh") ? "geometry" : "file";
+    const std::string type = tag == "geometry" ? " type=\"model\" fileExtensions=\".vtp\""
+                             : name == "labels" ? " type=\"label\" fileExtensions=\".nrrd\"" : "";
+    // Slicer needs unique names: LABELS beside --labels becomes labels_input.
+    if (std::find(flags.begin(), flags.end(), name) != flags.end() ||
+        std::find(switches.begin(), switches.end(), name) != switches.end())
+      name += "_input";
+    x << "    <" << tag << type << ">\n"
       << "      <name>" << identifier(name) << "</name>\n      <label>" << escape(word) << "</label>\n"
       << "      <description>" << escape(word) << ", as in --help</description>\n"
       << "      <channel>input</channel>\n      <index>" << index++ << "</index>\n    </" << tag << ">\n";
