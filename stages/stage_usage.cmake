@@ -7,6 +7,12 @@ if(header STREQUAL "")
   message(FATAL_ERROR "${SOURCE}: expected a leading // comment block with the stage's usage, found none")
 endif()
 string(REGEX REPLACE "(^|\n)// ?" "\\1" text "${header}")
+# The options every stage takes (core/cli.hpp, core/progress.hpp), said once here.
+string(APPEND text "\nEvery stage also takes:\n"
+  "  --progress text|slicer|none  progress as text lines on stderr (the default), as 3D Slicer's\n"
+  "      <filter-progress> lines on stdout, or not at all\n"
+  "  --xml   prints the stage's 3D Slicer CLI module description (XML) and exits\n"
+  "  --help  prints this text and exits\n")
 set(generated "// Generated from ${SOURCE} by stages/stage_usage.cmake.\n#pragma once\ninline constexpr const char* kStageUsage = R\"usage(${text})usage\";\n")
 if(EXISTS "${OUTPUT}")
   file(READ "${OUTPUT}" previous)

@@ -30,6 +30,7 @@
 #include "valve/analysis/mesh_comparison.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "stage_usage.hpp"
 
@@ -55,6 +56,7 @@ int main(int argc, char** argv) {
                        " file arguments");
     const fs::path sim_file = cl.positional()[0], ref_file = cl.positional()[1];
     const fs::path out = cl.require("out");
+    Progress progress("valve-compare", cl.has("quiet"));
     const TriMesh sim = read_mesh(sim_file), ref = read_mesh(ref_file);
     const bool same_numbering = sim.num_nodes() == ref.num_nodes();
     const std::string mode =
@@ -93,6 +95,7 @@ int main(int argc, char** argv) {
       write_mesh_copies(out / "reference_error.vtp", mesh_copies, ref, nullptr, reference_arrays);
     }
     summary.write();
+    progress.finish("distances written");
     if (!cl.has("quiet")) {
       std::printf("valve-compare: %d nodes, %s distance: mean %.3f mm, max %.3f mm, rms %.3f mm, p95 %.3f mm\n", c.error.count,
                   mode == "nodes" ? "node-to-node" : "surface", c.error.mean, c.error.max, c.error.rms, c.error.p95);

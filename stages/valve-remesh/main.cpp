@@ -11,15 +11,18 @@
 // input is already a mid-surface, e.g. a finite element model). --subdivide 1 also writes
 // NAME_x4.vtp, 2 also NAME_x16.vtp (seed 5.3.3). --reference measures the distance of every
 // node to a ground-truth surface. --write-membrane also writes the extracted face before
-// remeshing (membrane.vtp), to see what the remesher was given. Writes remesh.summary.json with the quality table.
+// remeshing (membrane.vtp), to see what the remesher was given. NAME.landmarks.mrk.json holds
+// the annulus ring and the free edges as 3D Slicer markup curves. Writes remesh.summary.json with the quality table.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
 #include "valve/analysis/distance_stats.hpp"
 #include "valve/analysis/surface_distance.hpp"
+#include "valve/chordae/slicer_markups.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
 #include "valve/io/mesh_io.hpp"
 #include "valve/mesh/quality.hpp"
@@ -74,6 +77,7 @@ int main(int argc, char** argv) {
     const std::string annulus_from = args.text("annulus-from", "");
     const double annulus_tolerance = args.length_mm("annulus-tolerance", 2.0, 0, 50);
 
+    Progress progress("valve-remesh", cl.has("quiet"));
     const TriMesh surface = read_mesh(surface_file);
     TriMesh reference_mesh;
     if (!reference.empty()) reference_mesh = read_mesh(reference);  // fail early, before the work
@@ -142,6 +146,8 @@ int main(int argc, char** argv) {
       levels.push_back(entry);
     }
     m["meshes"] = levels;
+    write_slicer_curves(out / (name + ".landmarks.mrk.json"), valve_landmark_curves(mesh, flatten(mesh.points)));
+    m["landmarks_file"] = name + ".landmarks.mrk.json";
     if (!rs.count_within_tolerance)
       summary.set_status("not_converged", "no edge length gave a count within " + std::to_string(int(100 * ro.tolerance)) +
                                               " % of " + std::to_string(ro.target_triangles) + " triangles in " +
@@ -152,6 +158,7 @@ int main(int argc, char** argv) {
       m["membrane_file"] = "membrane.vtp";
     }
     summary.write();
+    progress.finish("meshes written");
     if (!cl.has("quiet")) {
       const auto& e = levels[0];
       std::printf("valve-remesh: %d triangles, quality mean %.3f min %.3f, valence %.2f, %d boundary loop(s)%s -> %s\n",

@@ -6,8 +6,9 @@
 //               [--tube-scale 0.25] [--tube-ratio 0.5] [--tube-ridge-offset 0.35] [--sheet-ratio 0.1] [--tube-growth 2]
 //               [--notch-closing-radius 0.75] [--min-component 0.5] [--max-memory GB] [--quiet]
 // IMAGE: .nrrd .nhdr .mha .mhd .nii .nii.gz or a DICOM series directory. Writes the label
-// map DIR/NAME.nrrd (1 leaflet, 2 chordae, 3 other tissue) and segment.summary.json with the
-// threshold used, voxel counts and components. Chordae are told from leaflets by a
+// map DIR/NAME.nrrd (1 leaflet, 2 chordae, 3 other tissue), the same labels as a 3D Slicer
+// segmentation with named, coloured segments (DIR/NAME.seg.nrrd), and segment.summary.json
+// with the threshold used, voxel counts and components. Chordae are told from leaflets by a
 // morphological opening (chords thinner than leaflets) or by the Hessian's shape measure
 // (tubes vs sheets; for chords as thick as the leaflets). Physical coordinates (LPS, mm) throughout.
 #include <cstdio>
@@ -17,6 +18,7 @@
 
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
 #include "valve/imaging/segmentation.hpp"
 #include "valve/io/image_io.hpp"
@@ -90,11 +92,18 @@ int main(int argc, char** argv) {
     read.working_copies = o.chordae_method == "hessian" ? 18 : 6;
     o.validate("valve-segment");
 
+    Progress progress("valve-segment", cl.has("quiet"));
     const Volume volume = read_volume(image_file, read);
+    progress.update(0.2, "image read");
     SegmentationSummary s;
     const LabelMap labels = segment_valve(volume, o, &s);
+    progress.update(0.9, "segmented");
     fs::create_directories(out);
     write_label_map(out / (name + ".nrrd"), labels);
+    write_slicer_segmentation(out / (name + ".seg.nrrd"), labels,
+                              {{label_leaflet, "leaflet", Vec3(0.94, 0.82, 0.55)},
+                               {label_chordae, "chordae", Vec3(0.85, 0.25, 0.25)},
+                               {label_other_tissue, "other tissue", Vec3(0.55, 0.55, 0.60)}});
 
     StageSummary summary("segment", out);
     summary.add_input("image", image_file);
@@ -102,6 +111,7 @@ int main(int argc, char** argv) {
     const double voxel = s.cropped.spacing.prod();
     summary.metrics() = {
         {"labels", name + ".nrrd"},
+        {"slicer_segmentation", name + ".seg.nrrd"},
         {"threshold", s.threshold},
         {"threshold_method", o.threshold_method},
         {"size", {s.cropped.size[0], s.cropped.size[1], s.cropped.size[2]}},
@@ -115,6 +125,7 @@ int main(int argc, char** argv) {
         {"chordae_method", o.chordae_method},
         {"chordae_pieces", s.chordae_pieces}};
     summary.write();
+    progress.finish("labels written");
     if (!cl.has("quiet"))
       std::printf("valve-segment: threshold %.4g, leaflet %.1f mm3, chordae %.1f mm3 in %d pieces -> %s\n", s.threshold,
                   s.voxels_leaflet * voxel, s.voxels_chordae * voxel, s.chordae_pieces, (out / (name + ".nrrd")).string().c_str());

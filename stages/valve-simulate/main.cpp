@@ -7,7 +7,8 @@
 // GreenStrain, StretchFiber, StretchCross, AreaRatio, and PK2Stress for the FE model),
 // optionally a DIR/closed.sim.pvd time series, and DIR/simulate.summary.json; with several
 // leaflets also DIR/coaptation_columns.csv (the coaptation band's height down each column of
-// every free edge, analysis/coaptation.hpp).
+// every free edge, analysis/coaptation.hpp). DIR/closed.landmarks.mrk.json holds the closed
+// annulus ring, free edges and (several leaflets) coaptation line as 3D Slicer markup curves.
 // Exit 0 ok, 2 bad input, 3 not converged or failed (the summary says why; a non-converged
 // run still writes its last state, a failed one writes no mesh).
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "valve/core/atomic_file.hpp"
 #include "valve/analysis/surface_intersections.hpp"
 #include "valve/io/chordae_io.hpp"
+#include "valve/chordae/slicer_markups.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/mechanics/chordae_rods.hpp"
 #include "valve/mechanics/contact.hpp"
@@ -70,7 +72,8 @@ int main(int argc, char** argv) {
     // summary, whatever this run ends with (a failed run writes no mesh).
     auto remove_outputs = [&out] {
       std::error_code ec;
-      for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv"})
+      for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv",
+                               "closed.landmarks.mrk.json"})
         fs::remove(out / name, ec);
       for (const auto& format : kMeshCopyFormats) fs::remove(out / ("closed.sim." + format), ec);
       if (fs::is_directory(out / "series", ec))
@@ -229,6 +232,7 @@ int main(int argc, char** argv) {
     write_mesh(out / "closed.sim.vtp", mesh, &pos, arrays);
     write_mesh_copies(out / "closed.sim.vtp", mesh_copies, mesh, &pos, arrays);
     if (coaptation) write_file_atomic(out / "coaptation_columns.csv", coaptation_columns_csv(*coaptation));
+    write_slicer_curves(out / "closed.landmarks.mrk.json", valve_landmark_curves(mesh, res.x, coaptation ? &coaptation->coapting : nullptr));
     if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);
 
     double max_disp = 0;

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "valve/mesh/topology.hpp"
 #include "valve/config/json_reader.hpp"
+#include "valve/core/atomic_file.hpp"
 #include "valve/core/error.hpp"
 
 namespace valve {
@@ -110,6 +112,93 @@ void classify_by_insertion(ChordaeNetwork& net, const TriMesh& mesh) {
   for (std::size_t s = 0; s < net.segments.size(); ++s)
     if (net.segments[s].type != ChordType::strut && mark[s] >= 0)
       net.segments[s].type = mark[s] == 1 ? ChordType::primary : ChordType::secondary;
+}
+
+void write_slicer_curves(const std::filesystem::path& path, const std::vector<MarkupCurve>& curves) {
+  json markups = json::array();
+  for (const auto& c : curves) {
+    if (c.points.rows() < 2) continue;
+    if (!c.points.allFinite()) throw NumericalError(path.string() + ": curve " + c.name + " has a non-finite point");
+    json points = json::array();
+    for (Eigen::Index i = 0; i < c.points.rows(); ++i)
+      points.push_back({{"id", std::to_string(i + 1)},
+                        {"label", c.name + "-" + std::to_string(i + 1)},
+                        {"position", {c.points(i, 0), c.points(i, 1), c.points(i, 2)}},
+                        {"positionStatus", "defined"},
+                        {"locked", true}});
+    markups.push_back({{"type", c.closed ? "ClosedCurve" : "Curve"},
+                       {"coordinateSystem", "LPS"},
+                       {"coordinateUnits", "mm"},
+                       {"name", c.name},
+                       {"locked", true},
+                       {"controlPoints", points}});
+  }
+  const json doc = {
+      {"@schema", "https://raw.githubusercontent.com/slicer/slicer/master/Modules/Loadable/Markups/Resources/Schema/markups-schema-v1.0.3.json#"},
+      {"markups", markups}};
+  write_file_atomic(path, doc.dump(2) + "\n");
+}
+
+namespace {
+MatX3 curve_points(const std::vector<int>& nodes, const VecX& x) {
+  MatX3 p(static_cast<Eigen::Index>(nodes.size()), 3);
+  for (std::size_t i = 0; i < nodes.size(); ++i) p.row(static_cast<Eigen::Index>(i)) = x.segment<3>(3 * nodes[i]).transpose();
+  return p;
+}
+}  // namespace
+
+namespace {
+// The maximal runs of consecutive nodes of a boundary loop that satisfy `in`, in loop order; the
+// whole loop, closed, when every node does. `with_ends` adds the loop neighbour at each end of a
+// run (a free edge ends at the attached corners).
+template <class In>
+std::vector<std::pair<std::vector<int>, bool>> loop_runs(const std::vector<int>& loop, In in, bool with_ends) {
+  const std::size_t n = loop.size();
+  std::size_t s = 0;
+  while (s < n && in(loop[s])) ++s;
+  if (s == n) return {{loop, true}};
+  std::vector<std::pair<std::vector<int>, bool>> runs;
+  std::vector<int> run;
+  for (std::size_t k = 1; k <= n; ++k) {
+    const int node = loop[(s + k) % n], prev = loop[(s + k - 1) % n];
+    if (in(node)) {
+      if (run.empty() && with_ends) run.push_back(prev);
+      run.push_back(node);
+    } else if (!run.empty()) {
+      if (with_ends) run.push_back(node);
+      runs.emplace_back(run, false);
+      run.clear();
+    }
+  }
+  return runs;
+}
+
+std::string numbered(const std::string& name, int k) { return k == 0 ? name : name + " " + std::to_string(k + 1); }
+}  // namespace
+
+std::vector<MarkupCurve> valve_landmark_curves(const TriMesh& mesh, const VecX& x, const std::vector<int>* coapting) {
+  // From the boundary loops rather than one ring per mesh: a leaflet's attachment is an arc
+  // that must not be drawn closed across its free edge, and a valve of separate leaflets has
+  // one arc per leaflet.
+  const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
+  auto attached = [&](int i) { return mesh.roles[i] == NodeRole::fixed || mesh.boundary[i] == BoundaryType::attached; };
+  auto free_edge = [&](int i) { return mesh.boundary[i] == BoundaryType::free_edge; };
+  std::vector<MarkupCurve> annulus, edges, lines;
+  for (const auto& loop : topo.loops) {
+    for (const auto& [run, closed] : loop_runs(loop, attached, false))
+      annulus.push_back({numbered("annulus", static_cast<int>(annulus.size())), curve_points(run, x), closed});
+    for (const auto& [run, closed] : loop_runs(loop, free_edge, true)) {
+      edges.push_back({numbered("free edge", static_cast<int>(edges.size())), curve_points(run, x), closed});
+      if (!coapting) continue;
+      // An open edge ends in a sentinel (-1) so that no stretch wraps from its last node to its first.
+      std::vector<int> nodes = run;
+      if (!closed) nodes.push_back(-1);
+      for (const auto& [part, whole] : loop_runs(nodes, [&](int i) { return i >= 0 && (*coapting)[i] == 1; }, false))
+        lines.push_back({numbered("coaptation line", static_cast<int>(lines.size())), curve_points(part, x), closed && whole});
+    }
+  }
+  for (auto* group : {&edges, &lines}) annulus.insert(annulus.end(), group->begin(), group->end());
+  return annulus;
 }
 
 }  // namespace valve

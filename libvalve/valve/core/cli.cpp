@@ -10,6 +10,8 @@
 
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/progress.hpp"
+#include "valve/core/slicer_cli.hpp"
 
 namespace valve {
 namespace fs = std::filesystem;
@@ -33,6 +35,11 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
   };
   for (int i = 1; i < argc; ++i)
     if (std::string(argv[i]) == "--help" || std::string(argv[i]) == "-h") throw HelpRequested{};
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--xml") throw XmlRequested{flags, switches};
+  // Every stage reports progress the same way, so the option is common rather than listed.
+  std::vector<std::string> accepted = flags;
+  accepted.push_back("progress");
   for (int i = 1; i < argc; ++i) {
     std::string a = argv[i];
     if (a.rfind("--", 0) != 0) {
@@ -55,7 +62,7 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
         else throw InputError("--" + name + ": expected true or false, found \"" + value + "\"");
       }
       switch_values_[name] = on;
-    } else if (is_in(flags, name)) {
+    } else if (is_in(accepted, name)) {
       if (eq == std::string::npos) {
         if (i + 1 >= argc) throw InputError("--" + name + ": expected a value, found the end of the command line");
         value = argv[++i];
@@ -63,11 +70,12 @@ CommandLine::CommandLine(int argc, char** argv, const std::vector<std::string>& 
       values_[name].push_back(value);
     } else {
       std::string known;
-      for (const auto& f : flags) known += " --" + f;
+      for (const auto& f : accepted) known += " --" + f;
       for (const auto& f : switches) known += " --" + f;
       throw InputError(a + ": expected one of" + known + ", found an unknown option (--help prints the usage)");
     }
   }
+  if (const auto style = get("progress")) set_progress_style(parse_progress_style(*style, "--progress"));
 }
 
 std::optional<std::string> CommandLine::get(const std::string& flag) const {
@@ -169,6 +177,9 @@ int run_stage(const std::string& program, const char* usage, const std::function
     return body();
   } catch (const HelpRequested&) {
     std::printf("%s", usage);
+    return 0;
+  } catch (const XmlRequested& x) {
+    std::printf("%s", slicer_cli_xml(program, usage, x.flags, x.switches).c_str());
     return 0;
   } catch (const InputError& e) {
     discard_written_files();

@@ -13,12 +13,18 @@ namespace valve {
 
 /// Thrown by CommandLine when --help or -h is given; run_stage() prints the usage, exit 0.
 struct HelpRequested {};
+/// Thrown by CommandLine when --xml is given: run_stage() prints the stage's 3D Slicer CLI
+/// module description, made from the options the command line accepts, and exits 0.
+struct XmlRequested {
+  std::vector<std::string> flags, switches;
+};
 
 class CommandLine {
  public:
   /// `flags` lists the accepted --options taking a value; `switches` those without one
   /// (--switch or --switch=true|false; has() says whether it is on).
-  /// --help or -h anywhere throws HelpRequested before anything else is checked.
+  /// --help or -h anywhere throws HelpRequested before anything else is checked, --xml
+  /// XmlRequested. Every stage also takes --progress text|slicer|none (progress_style()).
   /// A flag may repeat (get() returns the last value, get_all() every value in order).
   CommandLine(int argc, char** argv, const std::vector<std::string>& flags, const std::vector<std::string>& switches);
   std::optional<std::string> get(const std::string& flag) const;
@@ -60,7 +66,8 @@ class StageSummary {
 
 /// Runs a stage body and maps exceptions to the exit-code contract, printing one line
 /// "<program>: error: <message>" on stderr. On HelpRequested prints `usage` on stdout
-/// (stages pass kStageUsage, their main.cpp's leading comment) and returns 0.
+/// (stages pass kStageUsage, their main.cpp's leading comment) and returns 0; on
+/// XmlRequested prints slicer_cli_xml() of the usage and the accepted options.
 int run_stage(const std::string& program, const char* usage, const std::function<int()>& body);
 
 /// Replaces non-finite numbers by null, recursively (JSON has no NaN; a summary must

@@ -1,12 +1,23 @@
 #pragma once
-// Progress on stderr (fraction, step, ETA) for long work; silenced by --quiet.
+// Progress of long work (fraction, step, ETA): text lines on stderr, silenced by --quiet, or
+// 3D Slicer's CLI protocol on stdout (--progress slicer), which Slicer reads to drive the
+// progress bar of a module run from its GUI.
 #include <chrono>
 #include <string>
 
 namespace valve {
 
+enum class ProgressStyle { text, slicer, none };
+
+/// How every Progress of the process reports (CommandLine sets it from --progress).
+void set_progress_style(ProgressStyle style);
+ProgressStyle progress_style();
+/// "text", "slicer" or "none"; InputError naming `where` otherwise.
+ProgressStyle parse_progress_style(const std::string& value, const std::string& where);
+
 class Progress {
  public:
+  /// `quiet` silences the text style only: the Slicer protocol is asked for explicitly.
   Progress(std::string label, bool quiet);
   /// Reports at most a few times per second; `fraction` in [0,1].
   void update(double fraction, const std::string& detail);

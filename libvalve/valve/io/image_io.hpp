@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "valve/imaging/volume.hpp"
 
@@ -41,6 +42,19 @@ enum class StoredPixel { int16, float32 };
 /// Writes a volume atomically, rounding to int16 by default (smaller, compresses better).
 void write_volume(const std::filesystem::path& path, const Volume& volume, StoredPixel pixel = StoredPixel::int16);
 void write_label_map(const std::filesystem::path& path, const LabelMap& labels);
+
+/// One label of a label map as 3D Slicer shows it: a named, coloured segment.
+struct SegmentDescription {
+  std::uint8_t label = 0;
+  std::string name;
+  Vec3 color = Vec3(0.5, 0.5, 0.5);  // RGB in [0, 1]
+};
+/// Writes a label map as a 3D Slicer segmentation (.seg.nrrd): the labels as one layer, and
+/// the header keys Slicer's segmentation storage reads (Segmentation_* and, per segment,
+/// SegmentN_ID, _Name, _Color, _LabelValue, _Layer, _Extent, ...), so that Slicer opens it
+/// with the segments named and coloured. A segment without voxels gets an empty extent.
+void write_slicer_segmentation(const std::filesystem::path& path, const LabelMap& labels,
+                               const std::vector<SegmentDescription>& segments);
 /// Writes a DICOM CT series (int16, one file per slice, IM0000.dcm ...) into `directory`.
 void write_dicom_series(const std::filesystem::path& directory, const Volume& volume);
 

@@ -24,6 +24,8 @@
 #include <vtkSTLWriter.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
+#include <vtkTransform.h>
+#include <vtkTransformPolyDataFilter.h>
 #include <vtkUnstructuredGrid.h>
 #include <vtkXMLPolyDataReader.h>
 #include <vtkXMLPolyDataWriter.h>
@@ -100,6 +102,43 @@ class ReadErrorCapture {
   int display_;
 };
 
+// The coordinate system a file declares, as 3D Slicer writes it (vtkMRMLModelStorageNode):
+// the field-data string array SPACE in .vtp and .vtu, "SPACE=RAS|LPS" in the legacy .vtk and
+// STL headers, a PLY comment and the first OBJ comment. `tag` is that field value or header
+// text. A file without the tag is in our frame, LPS; any other value is refused rather than
+// guessed, since a wrong guess mirrors the valve silently.
+bool declares_ras(const std::string& file, const std::string& tag, bool is_field) {
+  std::string value = tag;
+  if (!is_field) {
+    const auto at = tag.find("SPACE=");
+    if (at == std::string::npos) return false;
+    value = tag.substr(at + 6, tag.find_first_of(" \t\r\n,;", at + 6) - (at + 6));
+  }
+  if (value != "RAS" && value != "LPS")
+    throw_input_error(file, "SPACE", "RAS or LPS", "\"" + value + "\"");
+  return value == "RAS";
+}
+
+// The SPACE field of an XML data set, as a tag for declares_ras.
+bool field_declares_ras(const std::string& file, vtkDataSet* ds) {
+  vtkAbstractArray* a = ds->GetFieldData()->GetAbstractArray("SPACE");
+  if (!a) return false;
+  auto* s = vtkStringArray::SafeDownCast(a);
+  return declares_ras(file, s && s->GetNumberOfValues() > 0 ? s->GetValue(0) : "", true);
+}
+
+// RAS to LPS (x and y negated), transforming what Slicer's own conversion transforms (points,
+// active normals and vectors) so that a mesh Slicer converted on writing comes back exactly.
+vtkSmartPointer<vtkPolyData> ras_to_lps(vtkPolyData* pd) {
+  vtkNew<vtkTransform> flip;
+  flip->Scale(-1, -1, 1);
+  vtkNew<vtkTransformPolyDataFilter> f;
+  f->SetTransform(flip);
+  f->SetInputData(pd);
+  f->Update();
+  return f->GetOutput();
+}
+
 vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
   // VTK's own multi-line messages would break the one-line error contract; we check every
   // result ourselves and report in one line.
@@ -108,6 +147,8 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
   if (!fs::exists(path)) throw_input_error(file, "", "an existing mesh file", "no such file");
   const std::string ext = lower_extension(path);
   vtkSmartPointer<vtkDataSet> ds;
+  std::string header;      // Slicer's "SPACE=..." in a header or comment
+  bool has_field = false;  // XML formats carry the SPACE field instead
   // VTK readers report a truncated or corrupt file through the output window (often from
   // their XML parser, not the reader) and return what they got, often no cells; without
   // this the complaint would be about the missing cells.
@@ -119,40 +160,49 @@ vtkSmartPointer<vtkPolyData> read_polydata(const fs::path& path) {
     if (!r->CanReadFile(file.c_str())) throw_input_error(file, "", "a VTK XML PolyData file", "unreadable content");
     r->Update();
     ds = r->GetOutput();
+    has_field = true;
   } else if (ext == ".vtu") {
     vtkNew<vtkXMLUnstructuredGridReader> r;
     r->SetFileName(file.c_str());
     if (!r->CanReadFile(file.c_str())) throw_input_error(file, "", "a VTK XML UnstructuredGrid file", "unreadable content");
     r->Update();
     ds = r->GetOutput();
+    has_field = true;
   } else if (ext == ".vtk") {
     vtkNew<vtkGenericDataObjectReader> r;
     r->SetFileName(file.c_str());
     r->Update();
     ds = vtkDataSet::SafeDownCast(r->GetOutput());
     if (!ds) throw_input_error(file, "", "a legacy VTK data set", "unreadable content");
+    header = r->GetHeader() ? r->GetHeader() : "";
   } else if (ext == ".stl") {
     vtkNew<vtkSTLReader> r;
     r->SetFileName(file.c_str());
     r->Update();
     ds = r->GetOutput();
+    header = r->GetHeader() ? r->GetHeader() : "";
   } else if (ext == ".ply") {
     vtkNew<vtkPLYReader> r;
     r->SetFileName(file.c_str());
     if (!r->CanReadFile(file.c_str())) throw_input_error(file, "", "a PLY file", "unreadable content");
     r->Update();
     ds = r->GetOutput();
+    for (vtkIdType k = 0; k < r->GetComments()->GetNumberOfValues(); ++k)
+      if (r->GetComments()->GetValue(k).find("SPACE=") != std::string::npos) header = r->GetComments()->GetValue(k);
   } else if (ext == ".obj") {
     vtkNew<vtkOBJReader> r;
     r->SetFileName(file.c_str());
     r->Update();
     ds = r->GetOutput();
+    header = r->GetComment() ? r->GetComment() : "";
   } else {
     throw_input_error(file, "extension", ".vtp|.vtk|.vtu|.stl|.ply|.obj", "\"" + ext + "\"");
   }
   if (!ds) throw_input_error(file, "", "a mesh", "nothing readable");
   if (errors.seen()) throw_input_error(file, "", "a complete mesh file", "a read error (truncated or corrupt content)");
-  return to_polydata(ds);
+  const bool ras = has_field ? field_declares_ras(file, ds) : declares_ras(file, header, false);
+  vtkSmartPointer<vtkPolyData> pd = to_polydata(ds);
+  return ras ? ras_to_lps(pd) : pd;
 }
 
 void add_int_point_array(vtkPolyData* pd, const char* name, const std::vector<int>& v) {
@@ -202,13 +252,14 @@ MatX3 read_point_positions(const fs::path& path) {
   }
   if (!data || !data->GetPoints() || data->GetNumberOfPoints() == 0)
     throw_input_error(path.string(), "", "points", "none (unreadable or empty)");
+  const double mirror = field_declares_ras(path.string(), data) ? -1 : 1;
   MatX3 x(data->GetNumberOfPoints(), 3);
   for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i) {
     double p[3];
     data->GetPoint(i, p);
     if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
       throw_input_error(path.string(), "point " + std::to_string(i), "finite coordinates", "NaN or infinity");
-    x.row(i) << p[0], p[1], p[2];
+    x.row(i) << mirror * p[0], mirror * p[1], p[2];
   }
   return x;
 }

@@ -26,6 +26,8 @@ struct NamedArray {
 
 /// Reads a triangle mesh. Throws InputError (file, what was expected, what was found) for
 /// unreadable files, unknown extensions, non-triangle cells and meshes without cells.
+/// A mesh 3D Slicer tagged SPACE=RAS (field data, or its header or comment) is converted to
+/// LPS; untagged is LPS; any other SPACE value is an InputError.
 /// Arrays the file lacks are filled with defaults (TriMesh::fill_defaults); `extra`, when
 /// given, receives every named point and cell array as it is in the file.
 TriMesh read_mesh(const std::filesystem::path& path, std::vector<NamedArray>* extra = nullptr);
