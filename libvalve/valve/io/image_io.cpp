@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cmath>
 #include <cstdio>
 #include <mutex>
@@ -191,22 +192,19 @@ void write_itk(const fs::path& path, Image* image) {
   const std::string ext = lower_extension(path);
   if (!is_writable_extension(ext))
     throw_input_error(path.string(), "", "an image file name ending in .nrrd .mha .nii .nii.gz", "\"" + ext + "\"");
-  // The temporary keeps the extension ITK picks the format by.
-  const fs::path tmp = path.parent_path() / (".tmp." + path.filename().string());
-  try {
-    auto writer = itk::ImageFileWriter<Image>::New();
-    writer->SetFileName(tmp.string());
-    writer->SetInput(image);
-    writer->SetUseCompression(true);
-    writer->Update();
-  } catch (const itk::ExceptionObject& e) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw Error(path.string() + ": cannot write image: " + e.GetDescription());
-  }
-  fs::rename(tmp, path);
-  // A stage writing several images (labels.nrrd, labels.seg.nrrd) leaves none if a later one fails.
-  discard_on_failure(path);
+  // write_via_temp's temporary keeps the extension ITK picks the format by, is unique across
+  // hosts, and joins the files a failed stage removes (labels.nrrd when labels.seg.nrrd fails).
+  write_via_temp(path, [&](const fs::path& tmp) {
+    try {
+      auto writer = itk::ImageFileWriter<Image>::New();
+      writer->SetFileName(tmp.string());
+      writer->SetInput(image);
+      writer->SetUseCompression(true);
+      writer->Update();
+    } catch (const itk::ExceptionObject& e) {
+      throw Error(path.string() + ": cannot write image: " + e.GetDescription());
+    }
+  });
 }
 }  // namespace
 
@@ -270,10 +268,12 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
   // spacing from the image geometry (a 2-D slice would carry none of the volume's).
   using Slice = itk::Image<short, 3>;
   const ImageGeometry& g = volume.geometry;
-  const fs::path tmp = directory.parent_path() / (".tmp." + directory.filename().string());
+  // A new folder beside the target that no other process or host writing there can take.
+  if (directory.has_parent_path()) fs::create_directories(directory.parent_path());
+  std::string pattern = (directory.parent_path() / ("." + directory.filename().string() + ".tmpXXXXXX")).string();
+  if (!::mkdtemp(pattern.data())) throw Error(directory.string() + ": cannot create a temporary folder beside it");
+  const fs::path tmp = pattern;
   std::error_code ec;
-  fs::remove_all(tmp, ec);
-  fs::create_directories(tmp);
   // UIDs unique per written series (two phantoms must not look like one series to a viewer).
   const auto stamp = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
   const std::string root = "1.2.826.0.1.3680043.9.7433." + std::to_string(stamp) + ".";
