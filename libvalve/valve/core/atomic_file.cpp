@@ -31,15 +31,6 @@ WrittenFiles& written_files() {
   return w;
 }
 
-// The process's file-creation mask, read without changing it (umask() can only be read by
-// setting it, which would race with other threads creating files).
-mode_t current_umask() {
-  std::ifstream status("/proc/self/status");
-  for (std::string line; std::getline(status, line);)
-    if (line.rfind("Umask:", 0) == 0) return static_cast<mode_t>(std::stoul(line.substr(6), nullptr, 8));
-  return 022;
-}
-
 // A new, empty file beside `path` whose name no other process or host writing the same
 // folder can take (mkstemps), so that two cluster nodes writing one shared folder never write
 // into each other's temporary file. It keeps the extension, which writers go by (VTK's PLY
@@ -56,7 +47,7 @@ fs::path temp_sibling(const fs::path& path) {
   buffer.push_back('\0');
   const int fd = ::mkstemps(buffer.data(), static_cast<int>(extension.size()));
   if (fd < 0) throw Error(path.string() + ": cannot create a temporary file beside it: " + std::strerror(errno));
-  static const mode_t mode = 0666 & ~current_umask();
+  static const mode_t mode = 0666 & ~file_creation_mask();
   ::fchmod(fd, mode);
   ::close(fd);
   return fs::path(buffer.data());
@@ -71,6 +62,14 @@ void sync_to_disk(const fs::path& path, bool directory) {
   ::close(fd);
 }
 }  // namespace
+
+unsigned file_creation_mask() {
+  // umask() can only be read by setting it, which would race with other threads creating files.
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);)
+    if (line.rfind("Umask:", 0) == 0) return static_cast<unsigned>(std::stoul(line.substr(6), nullptr, 8));
+  return 022;
+}
 
 void write_via_temp(const fs::path& path, const std::function<void(const fs::path&)>& writer) {
   if (path.has_parent_path()) fs::create_directories(path.parent_path());

@@ -18,6 +18,10 @@ void write_file_atomic(const std::filesystem::path& path, const std::string& con
 void write_via_temp(const std::filesystem::path& path,
                     const std::function<void(const std::filesystem::path&)>& writer);
 
+/// The process's file-creation mask (umask), read without changing it: the permissions a
+/// temporary made by mkstemp or mkdtemp (0600, 0700) must get to be like any new file's.
+unsigned file_creation_mask();
+
 /// The files written through write_via_temp / write_file_atomic so far in this process.
 /// run_stage removes them when a stage fails with an exception: a stage that stops half way
 /// leaves none of its outputs (each file alone is already atomic; this makes the set so).

@@ -273,6 +273,7 @@ void write_dicom_series(const fs::path& directory, const Volume& volume) {
   std::string pattern = (directory.parent_path() / ("." + directory.filename().string() + ".tmpXXXXXX")).string();
   if (!::mkdtemp(pattern.data())) throw Error(directory.string() + ": cannot create a temporary folder beside it");
   const fs::path tmp = pattern;
+  fs::permissions(tmp, static_cast<fs::perms>(0777 & ~file_creation_mask()));
   std::error_code ec;
   // UIDs unique per written series (two phantoms must not look like one series to a viewer).
   const auto stamp = std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
