@@ -3,7 +3,8 @@
 # Runs P.json natively (WORK/native) and through its exported Snakefile with snakemake -j2
 # (WORK/snakemake), then checks:
 #   a) the same tables (time columns aside) and byte-identical meshes (compare_route_outputs.py);
-#   b) each route ran STEPS stage invocations (native: pipeline.log; snakemake: the stamps);
+#   b) each route ran STEPS stage invocations (native: the pipeline.log files; snakemake: the
+#      stamps), required pipelines included;
 #   c) a second snakemake has nothing to do (snakemake -n);
 #   d) the native runner's --dry-run over the snakemake folder finds every step cached;
 #   e) with CHANGED named: it and the STAGEs run as copies in WORK/bin; after the copy of
@@ -31,7 +32,7 @@ snakemake -s "$work/snakemake/Snakefile" -j2 > "$work/snakemake.log" 2>&1 || { t
 
 python3 "$here/compare_route_outputs.py" "$work/native" "$work/snakemake" || fail "a) outputs differ"
 
-native_steps=$(grep -c " ok exit " "$work/native/pipeline.log")
+native_steps=$(find "$work/native" -name pipeline.log -exec cat {} + | grep -c " ok exit ")
 snake_steps=$(find "$work/snakemake" -path '*/.valve-cache/*.json' | wc -l)
 echo "steps run: native $native_steps, snakemake $snake_steps (expected $steps)"
 [ "$native_steps" -eq "$steps" ] && [ "$snake_steps" -eq "$steps" ] || fail "b) step counts"

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """compare_route_outputs.py A B: the tables and meshes of two output folders of one pipeline.
 
-Every CSV in A's top level must exist in B with the same header and the same cells, except
+Every CSV in A (required pipelines' folders included) must exist in B with the same header and the same cells, except
 columns whose name says they hold a measured time (wall_time_s, wall_s, cpu_s: they differ
 from run to run; simulated_time_ms is a result and is compared).
-Every .vtp under A's runs/ and shared/ must exist in B byte for byte, and B must have no other:
+Every .vtp in A must exist in B byte for byte, and B must have no other:
 both routes run the same executables with the same arguments, and the stages are
 deterministic (DESIGN.md), so any difference is a difference in what ran.
 Prints what it compared; exit 1 on the first difference.
@@ -25,16 +25,17 @@ def table(path):
     return [[row[i] if i < len(row) else "" for i in keep] for row in rows], len(rows[0]) - len(keep)
 
 
-def meshes(root):
+def files(root, suffix):
+    """Relative paths of the files ending in suffix, outside snakemake's own folder."""
     found = set()
-    for top in ("runs", "shared"):
-        for folder, _, files in os.walk(os.path.join(root, top)):
-            found.update(os.path.relpath(os.path.join(folder, f), root) for f in files if f.endswith(".vtp"))
+    for folder, subfolders, names in os.walk(root):
+        subfolders[:] = [d for d in subfolders if d != ".snakemake"]
+        found.update(os.path.relpath(os.path.join(folder, f), root) for f in names if f.endswith(suffix))
     return found
 
 
 def main(a, b):
-    csvs = sorted(f for f in os.listdir(a) if f.endswith(".csv"))
+    csvs = sorted(files(a, ".csv"))
     if not csvs:
         sys.exit(f"no CSV table in {a}")
     for name in csvs:
@@ -45,9 +46,9 @@ def main(a, b):
         if ta != tb:
             sys.exit(f"{name}: tables differ\n{a}: {ta}\n{b}: {tb}")
         print(f"{name}: {len(ta) - 1} rows equal ({skipped} measured-time column(s) left out)")
-    ma, mb = meshes(a), meshes(b)
+    ma, mb = files(a, ".vtp"), files(b, ".vtp")
     if not ma:
-        sys.exit(f"no .vtp under {a}/runs or {a}/shared")
+        sys.exit(f"no .vtp in {a}")
     if ma != mb:
         sys.exit(f"meshes differ in name: only in {a}: {sorted(ma - mb)}; only in {b}: {sorted(mb - ma)}")
     for rel in sorted(ma):

@@ -360,3 +360,67 @@ TEST_CASE("pipeline spec: requires is checked with the file, cycles and misplace
   CHECK_THAT(message(R"({"requires": [{"pipeline": "broken.json", "out": "b"}], )" + step + "}"),
              Catch::Contains("broken.json: steps"));
 }
+
+TEST_CASE("runner: shared steps run once for all runs, and a rerun of one reruns every run", "[pipeline]") {
+  TempDir tmp("shared");
+  write_fake_stages(tmp.path() / "bin");
+  // valve-prep COUNTER --out DIR: one line more in COUNTER per invocation, DIR/value.txt = 7.
+  write_script(tmp.path() / "bin" / "valve-prep", "echo ran >> \"$1\"; mkdir -p \"$3\"; echo 7 > \"$3/value.txt\"; "
+                                                  "echo '{\"made\": 1}' > \"$3/prep.json\"");
+  // valve-use FILE K --out DIR: DIR/use.summary.json with value = FILE's number times K.
+  write_script(tmp.path() / "bin" / "valve-use",
+               "mkdir -p \"$4\"; printf '{\"value\": %s}\\n' \"$(( $(cat \"$1\") * $2 ))\" > \"$4/use.summary.json\"");
+  const fs::path counter = tmp.path() / "counter.txt";
+  write_text(counter, "");
+  const auto spec = write_and_load(tmp.path(), R"({"variables": {"k": [1, 2, 3]},
+    "steps": [{"name": "prep", "stage": "valve-prep", "args": [")" + counter.string() + R"(", "--out", "${run_dir}/prep"]},
+              {"name": "use", "stage": "valve-use", "args": ["${run_dir}/prep/value.txt", "${k}", "--out", "${run_dir}/use"]}],
+    "gather": [{"csv": "t.csv", "summary": "use/use.summary.json",
+                "columns": {"k": "${k}", "value": "summary:value", "prep": "file:prep/prep.json:made"}}]})");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  auto lines = [](const std::string& text, const std::string& word) {
+    size_t n = 0;
+    for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+    return n;
+  };
+
+  const PipelineOutcome first = run_pipeline(spec, options);
+  REQUIRE(first.exit_code == 0);
+  CHECK(lines(read_text(counter), "ran") == 1);
+  CHECK(read_text(options.out_dir / "t.csv") == "k,value,prep\n1,7,1\n2,14,1\n3,21,1\n");
+  CHECK(fs::exists(options.out_dir / "shared/prep/value.txt"));
+  CHECK_FALSE(fs::exists(options.out_dir / "runs/k-1/prep"));
+  REQUIRE(first.shared);
+  CHECK(first.shared->steps.at(0).status == "ok");
+
+  // Nothing changed: all cached.
+  const PipelineOutcome second = run_pipeline(spec, options);
+  REQUIRE(second.exit_code == 0);
+  CHECK(lines(read_text(counter), "ran") == 1);
+  CHECK(second.shared->steps.at(0).status == "cached");
+  for (const auto& run : second.runs) CHECK(run.steps.at(0).status == "cached");
+
+  // The shared step's input changed: it runs again, and so does every step of every run.
+  write_text(counter, read_text(counter) + "edited\n");
+  const PipelineOutcome third = run_pipeline(spec, options);
+  REQUIRE(third.exit_code == 0);
+  CHECK(lines(read_text(counter), "ran") == 2);
+  for (const auto& run : third.runs) {
+    CHECK(run.steps.at(0).status == "ok");
+    CHECK(run.steps.at(0).run_reason == "a shared step ran");
+  }
+
+  // A failing shared step: no run starts.
+  const auto failing = write_and_load(tmp.path(), R"({"variables": {"k": [1, 2]},
+    "steps": [{"name": "x", "stage": "valve-exit", "args": ["5", "--out", "${run_dir}/x"]},
+              {"name": "r", "stage": "valve-report", "args": ["${k}"]}]})");
+  options.out_dir = tmp.path() / "out_failing";
+  const PipelineOutcome failed = run_pipeline(failing, options);
+  CHECK(failed.exit_code == 3);
+  CHECK_THAT(failed.reason, Catch::Contains("the shared steps failed"));
+  REQUIRE(failed.runs.size() == 2);
+  CHECK(failed.runs[0].reason == "not started: a shared step failed");
+  CHECK_FALSE(fs::exists(options.out_dir / "runs/k-1/report.summary.json"));
+}

@@ -134,8 +134,8 @@ class SnakefileWriter {
     const std::string name = unique(prefix + "tables");
     local_rules_.push_back(name);
     text_ << "rule " << name << ":\n"
-          << "    input: " << py_list(stamps) << "\n"
-          << "    output: " << py_list(tables) << "\n"
+          << "    input:" << py_list(stamps) << "\n"
+          << "    output:" << py_list(tables) << "\n"
           << "    shell: " << py(format_escaped(shell_quote(words))) << "\n\n";
     return tables;
   }
@@ -195,7 +195,7 @@ class SnakefileWriter {
                         "--step", step.name}) +
            " --exit-code \"$code\"";
     text_ << "rule " << unique(rule) << ":\n";
-    if (!inputs.empty()) text_ << "    input: " << py_list(inputs) << "\n";
+    if (!inputs.empty()) text_ << "    input:" << py_list(inputs) << "\n";
     text_ << "    output: " << py(stamp) << "\n"
           << "    params: stage_sha256=stage_sha256(" << py(step.stage) << ")\n"
           << "    threads: " << spec_step.resources.threads << "\n"
