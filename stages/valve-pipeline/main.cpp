@@ -86,17 +86,16 @@ int list_runs(const PipelineSpec& spec, const CommandLine& cl) {
   for (const auto& r : spec.required)
     std::printf("requires %s (%zu run(s)), run first into %s\n", r.spec->file.c_str(),
                 expand_runs(*r.spec, out / r.out).size(), show((normalized_dir(out) / r.out).string()).c_str());
-  auto print_run = [&](const RunPlan& run, size_t first_step) {
-    std::printf("%s %s\n", first_step == 0 && spec.shared_steps ? "shared steps, once, in" : "run",
-                first_step == 0 && spec.shared_steps ? show(run.run_dir.string()).c_str() : run.run_id.c_str());
+  auto print_run = [&](const RunPlan& run, size_t first_step, const std::string& title) {
+    std::printf("%s\n", title.c_str());
     for (size_t s = 0; s < run.steps.size(); ++s) {
       std::vector<std::string> words{exes[first_step + s].string()};
       words.insert(words.end(), run.steps[s].args.begin(), run.steps[s].args.end());
       std::printf("  [%s] %s\n", run.steps[s].name.c_str(), show(shell_quote(words)).c_str());
     }
   };
-  if (const auto shared = shared_run(spec, out)) print_run(*shared, 0);
-  for (const auto& run : runs) print_run(run, spec.shared_steps);
+  if (const auto shared = shared_run(spec, out)) print_run(*shared, 0, "shared steps, once, in " + show(shared->run_dir.string()));
+  for (const auto& run : runs) print_run(run, spec.shared_steps, "run " + run.run_id);
   for (const auto& g : spec.gather)
     std::printf("gather %s from runs/*/%s\n", show((normalized_dir(out) / g.csv).string()).c_str(), g.summary.c_str());
   for (const auto& p : spec.plots)

@@ -145,7 +145,7 @@ TEST_CASE("placeholder errors name the key path before anything runs", "[pipelin
 
 TEST_CASE("structural errors: keys, steps, variables, zip, gather, plots", "[pipeline]") {
   CHECK(message_of(R"({"stepz": []})") ==
-        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, steps, gather, aggregate, plots), found an unknown key");
+        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, shared_steps, steps, gather, aggregate, plots), found an unknown key");
   CHECK_THAT(message_of(R"({"name": "x"})"), Catch::Contains("steps: expected a list of steps, found nothing"));
   CHECK_THAT(message_of(R"({"steps": []})"), Catch::Contains("steps: expected a non-empty list of steps"));
   CHECK_THAT(message_of(R"({"steps": [{"args": []}]})"), Catch::Contains("steps[0].stage: expected a string, found nothing"));
@@ -273,6 +273,9 @@ TEST_CASE("shared steps: none without variables, and the leading run stops where
                                 {"name": "b", "stage": "valve-x", "args": ["--out", "${run_dir}/b"]}])";
   CHECK(test::parse(R"({"steps": )" + steps + "}").shared_steps == 0);
   CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": )" + steps + "}").shared_steps == 2);
+  CHECK(test::parse(R"({"shared_steps": false, "variables": {"k": [1]}, "steps": )" + steps + "}").shared_steps == 0);
+  CHECK_THAT(test::message_of(R"({"shared_steps": "no", "variables": {"k": [1]}, "steps": )" + steps + "}"),
+             Catch::Contains("P.json: shared_steps: expected true or false, found string"));
   // The run id differs between runs.
   CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": [
     {"stage": "valve-x", "args": ["${run_id}", "--out", "${run_dir}/a"]}]})").shared_steps == 0);

@@ -666,7 +666,8 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir,
                             const std::vector<fs::path>& required_by) {
   if (!doc.is_object()) fail(file, "(top level)", "an object", describe(doc));
-  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "steps", "gather", "aggregate", "plots"},
+  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "shared_steps", "steps", "gather", "aggregate",
+                   "plots"},
              file, "");
   PipelineSpec spec;
   spec.file = file;
@@ -714,7 +715,12 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
              "\"" + spec.steps.back().name + "\" (also " + spec.steps[j].key + ")");
   }
 
-  find_shared_steps(spec);
+  bool share = true;
+  if (doc.contains("shared_steps")) {
+    if (!doc["shared_steps"].is_boolean()) fail(file, "shared_steps", "true or false", describe(doc["shared_steps"]));
+    share = doc["shared_steps"].get<bool>();
+  }
+  if (share) find_shared_steps(spec);
 
   if (doc.contains("gather")) {
     const ojson& g = doc["gather"];

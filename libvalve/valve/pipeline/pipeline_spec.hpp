@@ -18,6 +18,9 @@
 //     "ratio": [{"label": "20:60", "sx": "20 kPa"}, {"label": "60:60", "sx": "60 kPa"}],
 //     "mesh": {"range": [1, 10]}         //   a..b inclusive, step 1 (or -1 when b < a);
 //   },                                   //   {"range": [a, b, step]} with any nonzero step
+//   "shared_steps": true,                // optional, default true; false: every step runs in
+//                                        // every run (repetitions of one computation, as in a
+//                                        // benchmark; see "Shared steps")
 //   "sweep": "grid",                     // "grid" (default): Cartesian product, the first
 //                                        // variable varies slowest; "zip": the lists (of equal
 //                                        // length) are taken together, run k uses value k of each
@@ -111,7 +114,8 @@
 // "${run_dir}/<folder>" (or gather "<folder>/...") read DIR/shared/<folder> instead. The leading
 // run of such steps stops at the first step that uses a variable, has no such --out, or whose
 // folder a later step names as a relative path (that would be looked for in the run folder).
-// Why: a study of N runs repeats none of its common preparation N times.
+// Why: a study of N runs repeats none of its common preparation N times. "shared_steps":
+// false turns this off, for runs that are repetitions on purpose.
 //
 // Runs: run_id is a slug of the variable values, "angle-45_ratio-20-60_mesh-3" (characters
 // other than letters, digits, '.', '+' and '-' become '-'; an object value uses its "label");
