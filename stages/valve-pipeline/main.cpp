@@ -228,6 +228,11 @@ int main(int argc, char** argv) {
                        (pos.empty() ? "" : " starting with \"" + pos[0] + "\""));
     if (pos[0] == "export" && !cl.has("snakemake"))
       throw InputError("valve-pipeline: export: expected the format --snakemake, found none");
+    // The Snakefile holds every run; snakemake picks targets and forces reruns itself.
+    for (const char* option : {"run", "force", "dry-run"})
+      if (pos[0] == "export" && (std::string(option) == "run" ? cl.get("run").has_value() : cl.has(option)))
+        throw InputError(std::string("valve-pipeline: export: expected no --") + option +
+                         " (snakemake selects and forces jobs itself), found --" + option);
     RunnerOptions options;
     if (pos[0] != "list") options.out_dir = cl.require("out");
     options.jobs = parse_jobs(cl);
