@@ -5,6 +5,8 @@
 #include "pipeline_test_support.hpp"
 #include "valve/core/error.hpp"
 #include "valve/pipeline/process.hpp"
+#include "valve/pipeline/snakemake_export.hpp"
+#include "valve/pipeline/step_cache.hpp"
 #include <algorithm>
 
 using namespace valve;
@@ -423,4 +425,31 @@ TEST_CASE("runner: shared steps run once for all runs, and a rerun of one reruns
   REQUIRE(failed.runs.size() == 2);
   CHECK(failed.runs[0].reason == "not started: a shared step failed");
   CHECK_FALSE(fs::exists(options.out_dir / "runs/k-1/report.summary.json"));
+}
+
+TEST_CASE("snakemake export: a rule waits for the steps whose folders its arguments name", "[pipeline]") {
+  TempDir tmp("snakefile");
+  write_fake_stages(tmp.path() / "bin");
+  const auto spec = write_and_load(tmp.path(), R"({"steps": [
+    {"name": "a", "stage": "valve-exit", "args": ["0", "--out", "m"]},
+    {"name": "b", "stage": "valve-report", "args": ["m/x.json"]},
+    {"name": "c", "stage": "valve-report", "args": ["--set", "file=${run_dir}/m/y.json"]},
+    {"name": "d", "stage": "valve-report", "args": ["m2/x.json", "--out", "${run_dir}/m2"]},
+    {"name": "e", "stage": "valve-report", "args": ["{\"k\": 1}"], "resources": {"threads": 3, "mem_mb": 100, "runtime": 7}}]})");
+  const fs::path out = tmp.path() / "out";
+  const std::string text = snakefile_text(spec, out, {tmp.path() / "bin"}, "/bin/valve-pipeline");
+  auto rule = [&](const std::string& name) {
+    const auto at = text.find("rule " + name + ":\n");
+    REQUIRE(at != std::string::npos);
+    return text.substr(at, text.find("\nrule ", at + 1) - at);
+  };
+  const std::string stamp_a = step_stamp_path(out / "runs/single", "a").string();
+  CHECK(rule("a__single").find("input:") == std::string::npos);
+  CHECK_THAT(rule("b__single"), Catch::Contains("\"" + stamp_a + "\""));
+  CHECK_THAT(rule("c__single"), Catch::Contains("\"" + stamp_a + "\""));
+  CHECK_THAT(rule("d__single"), !Catch::Contains(stamp_a));  // m2 is not m
+  // Resources, and the braces of an argument doubled for snakemake's str.format.
+  CHECK_THAT(rule("e__single"), Catch::Contains("threads: 3\n") && Catch::Contains("mem_mb=100, runtime=7\n") &&
+                                    Catch::Contains("{{") && Catch::Contains("{params.stage_sha256}"));
+  CHECK_THAT(text, Catch::Contains("rule all:\n    input:\n        \"" + step_stamp_path(out / "runs/single", "a").string()));
 }

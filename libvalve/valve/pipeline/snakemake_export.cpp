@@ -92,20 +92,26 @@ class SnakefileWriter {
     auto add_run = [&](const RunPlan& run, size_t first_step, std::vector<Producer> producers) {
       for (size_t s = 0; s < run.steps.size(); ++s) {
         const ResolvedStep& step = run.steps[s];
-        std::vector<std::string> inputs = upstream;
-        for (const auto& p : producers)
-          if (std::any_of(step.args.begin(), step.args.end(), [&](const std::string& a) { return names_folder(a, p.out); }))
-            inputs.push_back(p.stamp);
+        // Each argument as written, and as the paths it names (itself, or after KEY=) resolved
+        // against the run folder, where the stage runs: "m/x.vtp" there is <run>/m/x.vtp.
+        std::vector<std::string> texts;
+        std::vector<fs::path> paths;
         for (const auto& a : step.args) {
+          texts.push_back(a);
           const auto eq = a.find('=');
           for (const std::string& c : {a, eq == std::string::npos ? std::string() : a.substr(eq + 1)}) {
             if (c.empty() || c[0] == '-') continue;
-            const fs::path path = (fs::path(c).is_absolute() ? fs::path(c) : run.run_dir / c).lexically_normal();
-            if (!inside(path, root_) && is_file(path) &&
-                std::find(inputs.begin(), inputs.end(), path.string()) == inputs.end())
-              inputs.push_back(path.string());
+            paths.push_back((fs::path(c).is_absolute() ? fs::path(c) : run.run_dir / c).lexically_normal());
+            texts.push_back(paths.back().string());
           }
         }
+        std::vector<std::string> inputs = upstream;
+        for (const auto& p : producers)
+          if (std::any_of(texts.begin(), texts.end(), [&](const std::string& t) { return names_folder(t, p.out); }))
+            inputs.push_back(p.stamp);
+        for (const auto& path : paths)
+          if (!inside(path, root_) && is_file(path) && std::find(inputs.begin(), inputs.end(), path.string()) == inputs.end())
+            inputs.push_back(path.string());
         const std::string stamp = step_stamp_path(run.run_dir, step.name).string();
         const auto out_dir = step_out_dir(step, run.run_dir);
         add_step_rule(prefix + identifier(step.name) + "__" + identifier(run.run_id), spec.steps[first_step + s],
@@ -167,7 +173,7 @@ class SnakefileWriter {
     local.insert(local.end(), local_rules_.begin(), local_rules_.end());
     head << "localrules: ";
     for (size_t i = 0; i < local.size(); ++i) head << (i ? ", " : "") << local[i];
-    head << "\n\nrule all:\n    input: " << py_list(targets) << "\n\n";
+    head << "\n\nrule all:\n    input:" << py_list(targets) << "\n\n";
     return head.str() + text_.str();
   }
 
