@@ -145,7 +145,7 @@ TEST_CASE("placeholder errors name the key path before anything runs", "[pipelin
 
 TEST_CASE("structural errors: keys, steps, variables, zip, gather, plots", "[pipeline]") {
   CHECK(message_of(R"({"stepz": []})") ==
-        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, steps, gather, aggregate, plots), found an unknown key");
+        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, shared_steps, steps, gather, aggregate, plots), found an unknown key");
   CHECK_THAT(message_of(R"({"name": "x"})"), Catch::Contains("steps: expected a list of steps, found nothing"));
   CHECK_THAT(message_of(R"({"steps": []})"), Catch::Contains("steps: expected a non-empty list of steps"));
   CHECK_THAT(message_of(R"({"steps": [{"args": []}]})"), Catch::Contains("steps[0].stage: expected a string, found nothing"));
@@ -240,4 +240,70 @@ TEST_CASE("pipeline files may carry comments, syntax errors name the line", "[pi
   const auto doc = ojson::parse("{\n// a comment\n\"steps\": [] /* another */\n}", nullptr, true, true);
   CHECK(doc.contains("steps"));
   CHECK_THROWS_WITH(load_pipeline("/nonexistent/P.json"), Catch::Contains("/nonexistent/P.json"));
+}
+
+TEST_CASE("shared steps: the leading steps without sweep variables run once in DIR/shared", "[pipeline]") {
+  const PipelineSpec spec = test::parse(R"({"variables": {"k": [1, 2]}, "steps": [
+    {"name": "a", "stage": "valve-x", "args": ["--out", "${run_dir}/a"]},
+    {"name": "b", "stage": "valve-x", "args": ["${run_dir}/a/f.vtp", "--out", "${run_dir}/b"]},
+    {"name": "c", "stage": "valve-x", "args": ["--k", "${k}", "--set", "file=${run_dir}/b/g.json", "--out", "${run_dir}/c"]},
+    {"name": "d", "stage": "valve-x", "args": ["${run_dir}/ab/h.vtp", "${run_dir}/a", "--out", "${run_dir}/d"]}],
+    "gather": [{"csv": "t.csv", "summary": "b/x.summary.json", "columns": {"k": "${k}"}}]})");
+  CHECK(spec.shared_steps == 2);
+  CHECK(spec.shared_outs == std::vector<std::string>{"a", "b"});
+  const auto shared = shared_run(spec, "/out");
+  REQUIRE(shared);
+  CHECK(shared->run_dir == "/out/shared");
+  REQUIRE(shared->steps.size() == 2);
+  CHECK(shared->steps[1].args == std::vector<std::string>{"/out/shared/a/f.vtp", "--out", "/out/shared/b"});
+  const auto runs = expand_runs(spec, "/out");
+  REQUIRE(runs.size() == 2);
+  REQUIRE(runs[1].steps.size() == 2);
+  CHECK(runs[1].steps[0].args ==
+        std::vector<std::string>{"--k", "2", "--set", "file=/out/shared/b/g.json", "--out", "/out/runs/k-2/c"});
+  // "ab" is not the shared folder "a"; "${run_dir}/a" alone is.
+  CHECK(runs[1].steps[1].args ==
+        std::vector<std::string>{"/out/runs/k-2/ab/h.vtp", "/out/shared/a", "--out", "/out/runs/k-2/d"});
+  CHECK(run_file(spec, runs[0], "/out", "b/x.summary.json") == "/out/shared/b/x.summary.json");
+  CHECK(run_file(spec, runs[0], "/out", "c/x.summary.json") == "/out/runs/k-1/c/x.summary.json");
+}
+
+TEST_CASE("shared steps: none without variables, and the leading run stops where it must", "[pipeline]") {
+  const std::string steps = R"([{"name": "a", "stage": "valve-x", "args": ["--out", "${run_dir}/a"]},
+                                {"name": "b", "stage": "valve-x", "args": ["--out", "${run_dir}/b"]}])";
+  CHECK(test::parse(R"({"steps": )" + steps + "}").shared_steps == 0);
+  CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": )" + steps + "}").shared_steps == 2);
+  CHECK(test::parse(R"({"shared_steps": false, "variables": {"k": [1]}, "steps": )" + steps + "}").shared_steps == 0);
+  CHECK_THAT(test::message_of(R"({"shared_steps": "no", "variables": {"k": [1]}, "steps": )" + steps + "}"),
+             Catch::Contains("P.json: shared_steps: expected true or false, found string"));
+  // The run id differs between runs.
+  CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": [
+    {"stage": "valve-x", "args": ["${run_id}", "--out", "${run_dir}/a"]}]})").shared_steps == 0);
+  // No --out inside the run folder: where it writes is unknown.
+  CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": [
+    {"stage": "valve-x", "args": ["${run_dir}/a"]}]})").shared_steps == 0);
+  // A later step names the folder relative to its own run folder.
+  CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": [
+    {"name": "a", "stage": "valve-x", "args": ["--out", "${run_dir}/a"]},
+    {"name": "b", "stage": "valve-x", "args": ["${k}", "a/f.vtp", "--out", "${run_dir}/b"]}]})").shared_steps == 0);
+  // Only leading steps: a step after a varying one runs in every run.
+  CHECK(test::parse(R"({"variables": {"k": [1]}, "steps": [
+    {"name": "a", "stage": "valve-x", "args": ["${k}", "--out", "${run_dir}/a"]},
+    {"name": "b", "stage": "valve-x", "args": ["--out", "${run_dir}/b"]}]})").shared_steps == 0);
+}
+
+TEST_CASE("step resources: defaults and per-step values", "[pipeline]") {
+  const PipelineSpec spec = test::parse(R"({"steps": [
+    {"name": "a", "stage": "valve-x", "args": []},
+    {"name": "b", "stage": "valve-x", "args": [], "resources": {"threads": 4, "mem_mb": 16000, "runtime": 240}}]})");
+  CHECK(spec.steps[0].resources.threads == 1);
+  CHECK(spec.steps[0].resources.mem_mb == 2048);
+  CHECK(spec.steps[0].resources.runtime_min == 60);
+  CHECK(spec.steps[1].resources.threads == 4);
+  CHECK(spec.steps[1].resources.mem_mb == 16000);
+  CHECK(spec.steps[1].resources.runtime_min == 240);
+  CHECK_THAT(test::message_of(R"({"steps": [{"stage": "valve-x", "args": [], "resources": {"threads": 0}}]})"),
+             Catch::Contains("steps[0].resources.threads: expected a positive integer"));
+  CHECK_THAT(test::message_of(R"({"steps": [{"stage": "valve-x", "args": [], "resources": {"gpus": 1}}]})"),
+             Catch::Contains("steps[0].resources.gpus: expected a known key"));
 }

@@ -5,6 +5,8 @@
 #include "pipeline_test_support.hpp"
 #include "valve/core/error.hpp"
 #include "valve/pipeline/process.hpp"
+#include "valve/pipeline/snakemake_export.hpp"
+#include "valve/pipeline/step_cache.hpp"
 #include <algorithm>
 
 using namespace valve;
@@ -359,4 +361,95 @@ TEST_CASE("pipeline spec: requires is checked with the file, cycles and misplace
   write_text(tmp.path() / "broken.json", R"({"steps": []})");
   CHECK_THAT(message(R"({"requires": [{"pipeline": "broken.json", "out": "b"}], )" + step + "}"),
              Catch::Contains("broken.json: steps"));
+}
+
+TEST_CASE("runner: shared steps run once for all runs, and a rerun of one reruns every run", "[pipeline]") {
+  TempDir tmp("shared");
+  write_fake_stages(tmp.path() / "bin");
+  // valve-prep COUNTER --out DIR: one line more in COUNTER per invocation, DIR/value.txt = 7.
+  write_script(tmp.path() / "bin" / "valve-prep", "echo ran >> \"$1\"; mkdir -p \"$3\"; echo 7 > \"$3/value.txt\"; "
+                                                  "echo '{\"made\": 1}' > \"$3/prep.json\"");
+  // valve-use FILE K --out DIR: DIR/use.summary.json with value = FILE's number times K.
+  write_script(tmp.path() / "bin" / "valve-use",
+               "mkdir -p \"$4\"; printf '{\"value\": %s}\\n' \"$(( $(cat \"$1\") * $2 ))\" > \"$4/use.summary.json\"");
+  const fs::path counter = tmp.path() / "counter.txt";
+  write_text(counter, "");
+  const auto spec = write_and_load(tmp.path(), R"({"variables": {"k": [1, 2, 3]},
+    "steps": [{"name": "prep", "stage": "valve-prep", "args": [")" + counter.string() + R"(", "--out", "${run_dir}/prep"]},
+              {"name": "use", "stage": "valve-use", "args": ["${run_dir}/prep/value.txt", "${k}", "--out", "${run_dir}/use"]}],
+    "gather": [{"csv": "t.csv", "summary": "use/use.summary.json",
+                "columns": {"k": "${k}", "value": "summary:value", "prep": "file:prep/prep.json:made"}}]})");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  auto lines = [](const std::string& text, const std::string& word) {
+    size_t n = 0;
+    for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;
+    return n;
+  };
+
+  const PipelineOutcome first = run_pipeline(spec, options);
+  REQUIRE(first.exit_code == 0);
+  CHECK(lines(read_text(counter), "ran") == 1);
+  CHECK(read_text(options.out_dir / "t.csv") == "k,value,prep\n1,7,1\n2,14,1\n3,21,1\n");
+  CHECK(fs::exists(options.out_dir / "shared/prep/value.txt"));
+  CHECK_FALSE(fs::exists(options.out_dir / "runs/k-1/prep"));
+  REQUIRE(first.shared);
+  CHECK(first.shared->steps.at(0).status == "ok");
+
+  // Nothing changed: all cached.
+  const PipelineOutcome second = run_pipeline(spec, options);
+  REQUIRE(second.exit_code == 0);
+  CHECK(lines(read_text(counter), "ran") == 1);
+  CHECK(second.shared->steps.at(0).status == "cached");
+  for (const auto& run : second.runs) CHECK(run.steps.at(0).status == "cached");
+
+  // The shared step's input changed: it runs again, and so does every step of every run.
+  write_text(counter, read_text(counter) + "edited\n");
+  const PipelineOutcome third = run_pipeline(spec, options);
+  REQUIRE(third.exit_code == 0);
+  CHECK(lines(read_text(counter), "ran") == 2);
+  for (const auto& run : third.runs) {
+    CHECK(run.steps.at(0).status == "ok");
+    CHECK(run.steps.at(0).run_reason == "a shared step ran");
+  }
+
+  // A failing shared step: no run starts.
+  const auto failing = write_and_load(tmp.path(), R"({"variables": {"k": [1, 2]},
+    "steps": [{"name": "x", "stage": "valve-exit", "args": ["5", "--out", "${run_dir}/x"]},
+              {"name": "r", "stage": "valve-report", "args": ["${k}"]}]})");
+  options.out_dir = tmp.path() / "out_failing";
+  const PipelineOutcome failed = run_pipeline(failing, options);
+  CHECK(failed.exit_code == 3);
+  CHECK_THAT(failed.reason, Catch::Contains("the shared steps failed"));
+  REQUIRE(failed.runs.size() == 2);
+  CHECK(failed.runs[0].reason == "not started: a shared step failed");
+  CHECK_FALSE(fs::exists(options.out_dir / "runs/k-1/report.summary.json"));
+}
+
+TEST_CASE("snakemake export: a rule waits for the steps whose folders its arguments name", "[pipeline]") {
+  TempDir tmp("snakefile");
+  write_fake_stages(tmp.path() / "bin");
+  const auto spec = write_and_load(tmp.path(), R"({"steps": [
+    {"name": "a", "stage": "valve-exit", "args": ["0", "--out", "m"]},
+    {"name": "b", "stage": "valve-report", "args": ["m/x.json"]},
+    {"name": "c", "stage": "valve-report", "args": ["--set", "file=${run_dir}/m/y.json"]},
+    {"name": "d", "stage": "valve-report", "args": ["m2/x.json", "--out", "${run_dir}/m2"]},
+    {"name": "e", "stage": "valve-report", "args": ["{\"k\": 1}"], "resources": {"threads": 3, "mem_mb": 100, "runtime": 7}}]})");
+  const fs::path out = tmp.path() / "out";
+  const std::string text = snakefile_text(spec, out, {tmp.path() / "bin"}, "/bin/valve-pipeline");
+  auto rule = [&](const std::string& name) {
+    const auto at = text.find("rule " + name + ":\n");
+    REQUIRE(at != std::string::npos);
+    return text.substr(at, text.find("\nrule ", at + 1) - at);
+  };
+  const std::string stamp_a = step_stamp_path(out / "runs/single", "a").string();
+  CHECK(rule("a__single").find("input:") == std::string::npos);
+  CHECK_THAT(rule("b__single"), Catch::Contains("\"" + stamp_a + "\""));
+  CHECK_THAT(rule("c__single"), Catch::Contains("\"" + stamp_a + "\""));
+  CHECK_THAT(rule("d__single"), !Catch::Contains(stamp_a));  // m2 is not m
+  // Resources, and the braces of an argument doubled for snakemake's str.format.
+  CHECK_THAT(rule("e__single"), Catch::Contains("threads: 3\n") && Catch::Contains("mem_mb=100, runtime=7\n") &&
+                                    Catch::Contains("{{") && Catch::Contains("{params.stage_sha256}"));
+  CHECK_THAT(text, Catch::Contains("rule all:\n    input:\n        \"" + step_stamp_path(out / "runs/single", "a").string()));
 }

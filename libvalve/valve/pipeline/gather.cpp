@@ -85,13 +85,13 @@ CsvTable gather_table(const PipelineSpec& spec, const GatherSpec& gather, const 
   for (const auto& c : gather.columns) table.header.push_back(c.header);
   for (const auto& run : runs) {
     const Bindings b = run_bindings(spec, run, out_dir);
-    const fs::path file = run.run_dir / substitute(gather.summary, b, spec.file, gather.key + ".summary");
+    const fs::path file = run_file(spec, run, out_dir, substitute(gather.summary, b, spec.file, gather.key + ".summary"));
     const ojson summary = read_run_json(run.run_id, file, missing);
     std::map<std::string, ojson> other_files;  // file: columns, read once per run
     auto file_value = [&](const ColumnSpec& c) -> const ojson* {
       const std::string name = substitute(c.file, b, spec.file, gather.key + ".columns." + c.header);
       auto it = other_files.find(name);
-      if (it == other_files.end()) it = other_files.emplace(name, read_run_json(run.run_id, run.run_dir / name, missing)).first;
+      if (it == other_files.end()) it = other_files.emplace(name, read_run_json(run.run_id, run_file(spec, run, out_dir, name), missing)).first;
       return find_path(it->second, c.text);
     };
     std::vector<const ojson*> elements{nullptr};

@@ -233,7 +233,7 @@ StepSpec parse_step(const ojson& s, size_t i, const std::vector<SweepVariable>& 
   StepSpec step;
   step.key = "steps[" + std::to_string(i) + "]";
   if (!s.is_object()) fail(file, step.key, "an object with stage and args", describe(s));
-  check_keys(s, {"name", "stage", "args", "allow_exit"}, file, step.key);
+  check_keys(s, {"name", "stage", "args", "allow_exit", "resources"}, file, step.key);
   step.stage = required_string(s, "stage", file, step.key);
   const std::string suffix = step.stage.rfind("valve-", 0) == 0 ? step.stage.substr(6) : "";
   if (suffix.empty() || !std::all_of(suffix.begin(), suffix.end(), is_file_name_part))
@@ -262,7 +262,97 @@ StepSpec parse_step(const ojson& s, size_t i, const std::vector<SweepVariable>& 
       step.allow_exit.push_back(e.get<int>());
     }
   }
+  if (s.contains("resources")) {
+    const ojson& r = s["resources"];
+    const std::string key = step.key + ".resources";
+    if (!r.is_object()) fail(file, key, "an object of threads, mem_mb, runtime", describe(r));
+    check_keys(r, {"threads", "mem_mb", "runtime"}, file, key);
+    auto positive = [&](const char* name, int& into) {
+      if (!r.contains(name)) return;
+      const ojson& v = r[name];
+      if (!v.is_number_integer() || v.get<long long>() < 1 || v.get<long long>() > 10000000)
+        fail(file, child_key(key, name), "a positive integer", describe(v));
+      into = v.get<int>();
+    };
+    positive("threads", step.resources.threads);
+    positive("mem_mb", step.resources.mem_mb);
+    positive("runtime", step.resources.runtime_min);
+  }
   return step;
+}
+
+// Whether a step's arguments use a sweep variable or the run id (they differ between runs).
+bool step_varies(const StepSpec& step, const std::vector<SweepVariable>& variables, const std::string& file) {
+  for (size_t k = 0; k < step.args.size(); ++k)
+    for (const auto& piece : split_placeholders(step.args[k], file, step.key)) {
+      if (!piece.placeholder) continue;
+      const std::string name = split_reference(piece.text).first;
+      if (name == "run_id" || std::any_of(variables.begin(), variables.end(),
+                                          [&](const SweepVariable& v) { return v.name == name; }))
+        return true;
+    }
+  return false;
+}
+
+const std::string run_dir_prefix = "${run_dir}/";
+
+// The folder of "--out ${run_dir}/<folder>", or "" when the step writes elsewhere.
+std::string run_out_folder(const StepSpec& step) {
+  for (size_t k = 0; k + 1 < step.args.size(); ++k) {
+    if (step.args[k] != "--out") continue;
+    const std::string& o = step.args[k + 1];
+    if (o.rfind(run_dir_prefix, 0) != 0) return "";
+    std::string rel = fs::path(o.substr(run_dir_prefix.size())).lexically_normal().string();
+    while (!rel.empty() && rel.back() == '/') rel.pop_back();
+    if (rel.empty() || rel == "." || rel.rfind("..", 0) == 0 || rel.find('$') != std::string::npos) return "";
+    return rel;
+  }
+  return "";
+}
+
+// Where `text` names `folder` (or a file in it) at `at`: followed by its end, '/' or a
+// character that cannot continue a folder name.
+bool folder_ends_at(const std::string& text, size_t end) {
+  return end == text.size() || !is_file_name_part(text[end]);
+}
+
+// Whether an argument names `folder` relative to the working directory (a run folder).
+bool names_relative(const std::string& arg, const std::string& folder) {
+  for (size_t at = arg.find(folder); at != std::string::npos; at = arg.find(folder, at + 1)) {
+    const bool starts = at == 0 || arg[at - 1] == '=' || arg[at - 1] == ',';
+    if (starts && folder_ends_at(arg, at + folder.size())) return true;
+  }
+  return false;
+}
+
+// `arg` with every "${run_dir}/<folder>" of a shared folder replaced by its DIR/shared copy.
+std::string to_shared(std::string arg, const std::vector<std::string>& folders) {
+  for (const auto& folder : folders) {
+    const std::string from = run_dir_prefix + folder, to = "${out_dir}/shared/" + folder;
+    for (size_t at = arg.find(from); at != std::string::npos; at = arg.find(from, at)) {
+      if (!folder_ends_at(arg, at + from.size()) || (at > 0 && arg[at - 1] == '$')) {
+        at += from.size();
+        continue;
+      }
+      arg.replace(at, from.size(), to);
+      at += to.size();
+    }
+  }
+  return arg;
+}
+
+void find_shared_steps(PipelineSpec& spec) {
+  if (spec.variables.empty()) return;
+  for (size_t i = 0; i < spec.steps.size(); ++i) {
+    const StepSpec& step = spec.steps[i];
+    const std::string folder = run_out_folder(step);
+    if (folder.empty() || step_varies(step, spec.variables, spec.file)) return;
+    for (size_t j = i + 1; j < spec.steps.size(); ++j)
+      for (const auto& a : spec.steps[j].args)
+        if (names_relative(a, folder)) return;
+    spec.shared_outs.push_back(folder);
+    spec.shared_steps = i + 1;
+  }
 }
 
 // Levenshtein distance (insertions, deletions, substitutions), for near-miss names.
@@ -522,9 +612,10 @@ void parse_required(const ojson& list, const std::string& file, const std::vecto
       bool bad = p.is_absolute() || p.empty() || p == ".";  // lexically_normal makes "./" and "a/.." "."
       for (const auto& part : p) bad = bad || part == "..";
       const std::string head = p.empty() ? "" : p.begin()->string();
-      bad = bad || head == "runs" || head == "pipeline.summary.json" || head == "pipeline.log" || head == "provenance.json";
+      bad = bad || head == "runs" || head == "shared" || head == "Snakefile" || head == "pipeline.summary.json" ||
+            head == "pipeline.log" || head == "provenance.json";
       if (bad)
-        fail(file, out_key, "a relative folder inside the output folder (not ., runs, pipeline.log, provenance.json, pipeline.summary.json)",
+        fail(file, out_key, "a relative folder inside the output folder (not ., runs, shared, Snakefile, pipeline.log, provenance.json, pipeline.summary.json)",
              "\"" + text + "\"");
       required.out = p.string();
     }
@@ -575,7 +666,8 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir,
                             const std::vector<fs::path>& required_by) {
   if (!doc.is_object()) fail(file, "(top level)", "an object", describe(doc));
-  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "steps", "gather", "aggregate", "plots"},
+  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "shared_steps", "steps", "gather", "aggregate",
+                   "plots"},
              file, "");
   PipelineSpec spec;
   spec.file = file;
@@ -622,6 +714,13 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
              "a step name not used before (set \"name\" when a stage runs twice)",
              "\"" + spec.steps.back().name + "\" (also " + spec.steps[j].key + ")");
   }
+
+  bool share = true;
+  if (doc.contains("shared_steps")) {
+    if (!doc["shared_steps"].is_boolean()) fail(file, "shared_steps", "true or false", describe(doc["shared_steps"]));
+    share = doc["shared_steps"].get<bool>();
+  }
+  if (share) find_shared_steps(spec);
 
   if (doc.contains("gather")) {
     const ojson& g = doc["gather"];
@@ -763,15 +862,41 @@ std::vector<RunPlan> expand_runs(const PipelineSpec& spec, const fs::path& out_d
     run.variables = assignments[r];
     run.run_dir = out / "runs" / run.run_id;
     const Bindings b = run_bindings(spec, run, out);
-    for (const auto& s : spec.steps) {
+    for (size_t i = spec.shared_steps; i < spec.steps.size(); ++i) {
+      const StepSpec& s = spec.steps[i];
       ResolvedStep step{s.name, s.stage, {}, s.allow_exit};
       for (size_t k = 0; k < s.args.size(); ++k)
-        step.args.push_back(substitute(s.args[k], b, spec.file, s.key + ".args[" + std::to_string(k) + "]"));
+        step.args.push_back(substitute(to_shared(s.args[k], spec.shared_outs), b, spec.file,
+                                       s.key + ".args[" + std::to_string(k) + "]"));
       run.steps.push_back(step);
     }
     runs.push_back(run);
   }
   return runs;
+}
+
+std::optional<RunPlan> shared_run(const PipelineSpec& spec, const fs::path& out_dir) {
+  if (spec.shared_steps == 0) return std::nullopt;
+  RunPlan run;
+  run.run_id = "shared";
+  run.run_dir = normalized_dir(out_dir) / "shared";
+  const Bindings b = run_bindings(spec, run, out_dir);
+  for (size_t i = 0; i < spec.shared_steps; ++i) {
+    const StepSpec& s = spec.steps[i];
+    ResolvedStep step{s.name, s.stage, {}, s.allow_exit};
+    for (size_t k = 0; k < s.args.size(); ++k)
+      step.args.push_back(substitute(s.args[k], b, spec.file, s.key + ".args[" + std::to_string(k) + "]"));
+    run.steps.push_back(step);
+  }
+  return run;
+}
+
+fs::path run_file(const PipelineSpec& spec, const RunPlan& run, const fs::path& out_dir, const std::string& relative) {
+  const std::string rel = fs::path(relative).lexically_normal().string();
+  for (const auto& folder : spec.shared_outs)
+    if (rel.rfind(folder, 0) == 0 && (rel.size() == folder.size() || rel[folder.size()] == '/'))
+      return normalized_dir(out_dir) / "shared" / rel;
+  return run.run_dir / relative;
 }
 
 std::vector<RunPlan> select_runs(std::vector<RunPlan> runs, const std::vector<std::string>& ids,

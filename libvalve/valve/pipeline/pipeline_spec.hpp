@@ -18,6 +18,9 @@
 //     "ratio": [{"label": "20:60", "sx": "20 kPa"}, {"label": "60:60", "sx": "60 kPa"}],
 //     "mesh": {"range": [1, 10]}         //   a..b inclusive, step 1 (or -1 when b < a);
 //   },                                   //   {"range": [a, b, step]} with any nonzero step
+//   "shared_steps": true,                // optional, default true; false: every step runs in
+//                                        // every run (repetitions of one computation, as in a
+//                                        // benchmark; see "Shared steps")
 //   "sweep": "grid",                     // "grid" (default): Cartesian product, the first
 //                                        // variable varies slowest; "zip": the lists (of equal
 //                                        // length) are taken together, run k uses value k of each
@@ -25,7 +28,12 @@
 //     {"name": "mesh",                   // optional, default the stage name; unique; names the log
 //      "stage": "valve-generate",        // required: "valve-<name>", see process.hpp for lookup
 //      "args": ["square_patch", "--out", "${run_dir}/mesh"],   // required: strings (or numbers)
-//      "allow_exit": [0, 3]}             // optional exit codes that do not fail the run, default [0]
+//      "allow_exit": [0, 3],             // optional exit codes that do not fail the run, default [0]
+//      "resources": {"threads": 1, "mem_mb": 2048, "runtime": 60}}   // optional, these defaults:
+//                                        // what a cluster scheduler reserves per invocation
+//                                        // (snakemake threads, mem_mb, runtime in minutes;
+//                                        // see "Cluster route" in docs/pipelines.md); the
+//                                        // native runner runs one step per job slot
 //   ],
 //   "gather": [                          // optional: CSV tables in DIR
 //     {"csv": "biaxial.csv",             // relative path inside DIR; entries naming the same
@@ -95,9 +103,19 @@
 // value, or an unterminated placeholder is an InputError naming the key path.
 //
 // Outputs in DIR: runs/<run_id>/ (one folder per run, emptied when the run starts; the steps
-// run there as working directory and log stdout+stderr to <step>.log), the gather CSVs, the
+// run there as working directory and log stdout+stderr to <step>.log), shared/ (the shared
+// steps, see below, run there the same way), the gather CSVs, the
 // aggregate CSVs, the plots with their gnuplot scripts (<png>.gp) and logs (<png>.log),
 // pipeline.summary.json.
+//
+// Shared steps: in a pipeline with variables, the leading steps that use no sweep variable
+// (nor ${run_id}) and write into "--out ${run_dir}/<folder>" run once, into DIR/shared/<folder>,
+// before the runs (their stamps in DIR/shared/.valve-cache). Later steps and gathers that name
+// "${run_dir}/<folder>" (or gather "<folder>/...") read DIR/shared/<folder> instead. The leading
+// run of such steps stops at the first step that uses a variable, has no such --out, or whose
+// folder a later step names as a relative path (that would be looked for in the run folder).
+// Why: a study of N runs repeats none of its common preparation N times. "shared_steps":
+// false turns this off, for runs that are repetitions on purpose.
 //
 // Runs: run_id is a slug of the variable values, "angle-45_ratio-20-60_mesh-3" (characters
 // other than letters, digits, '.', '+' and '-' become '-'; an object value uses its "label");
@@ -107,6 +125,7 @@
 #include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -125,11 +144,19 @@ struct SweepVariable {
   std::vector<ojson> values;  ///< non-empty; numbers, strings, booleans or objects
 };
 
+/// What a cluster scheduler reserves for one invocation of a step.
+struct StepResources {
+  int threads = 1;
+  int mem_mb = 2048;
+  int runtime_min = 60;
+};
+
 struct StepSpec {
   std::string name;               ///< unique inside the pipeline; the log is <name>.log
   std::string stage;              ///< "valve-<name>"
   std::vector<std::string> args;  ///< with placeholders
   std::vector<int> allow_exit{0};
+  StepResources resources;
   std::string key;                ///< "steps[i]", for messages
 };
 
@@ -196,6 +223,8 @@ struct PipelineSpec {
   std::vector<SweepVariable> variables;
   SweepKind sweep = SweepKind::grid;
   std::vector<StepSpec> steps;
+  size_t shared_steps = 0;               ///< leading steps run once in DIR/shared
+  std::vector<std::string> shared_outs;  ///< their --out folders, relative to a run folder
   std::vector<GatherSpec> gather;       ///< entries may share a csv (same columns)
   std::vector<AggregateSpec> aggregates;
   std::vector<PlotSpec> plots;
@@ -246,8 +275,17 @@ std::vector<ojson> expand_sweep(const std::vector<SweepVariable>& variables, Swe
 /// Readable unique run ids for the assignments, in the same order (see the header comment).
 std::vector<std::string> make_run_ids(const std::vector<ojson>& assignments);
 
-/// The runs of the pipeline with their folders under out_dir/runs and substituted steps.
+/// The runs of the pipeline with their folders under out_dir/runs and substituted steps
+/// (the steps after the shared ones, reading the shared outputs in out_dir/shared).
 std::vector<RunPlan> expand_runs(const PipelineSpec& spec, const std::filesystem::path& out_dir);
+
+/// The shared steps as one run "shared" in out_dir/shared, or nothing without shared steps.
+std::optional<RunPlan> shared_run(const PipelineSpec& spec, const std::filesystem::path& out_dir);
+
+/// A file named relative to a run folder: in out_dir/shared when it lies in a shared step's
+/// --out folder, else in the run folder.
+std::filesystem::path run_file(const PipelineSpec& spec, const RunPlan& run, const std::filesystem::path& out_dir,
+                               const std::string& relative);
 
 /// The runs whose ids are listed, in pipeline order; all of them when `ids` is empty. An id
 /// that is not a run of the pipeline is an InputError naming `option`.

@@ -70,14 +70,14 @@ std::vector<fs::path> resolve_stages(const PipelineSpec& spec, const std::vector
 }
 
 std::vector<StepPlan> plan_runs(const std::vector<RunPlan>& runs, const std::vector<std::string>& executable_sha256,
-                                bool force) {
+                                bool force, const std::string& rerun_all) {
   std::vector<StepPlan> plans;
   for (const RunPlan& run : runs) {
     StepPlan plan;
-    bool running = force;
+    bool running = force || !rerun_all.empty();
     for (size_t i = 0; i < run.steps.size(); ++i) {
       if (running) {
-        plan.push_back(force ? std::string("forced") : std::string("an earlier step runs"));
+        plan.push_back(force ? std::string("forced") : !rerun_all.empty() && i == 0 ? rerun_all : std::string("an earlier step runs"));
         continue;
       }
       plan.push_back(step_rerun_reason(run.run_dir, run.steps[i], step_cache_key(executable_sha256.at(i), run.steps[i])));
@@ -92,7 +92,7 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs, const std
                                      const ExecutionOptions& options, const RunProgress& progress) {
   const int jobs = options.jobs;
   const bool quiet = options.quiet;
-  const std::vector<StepPlan> plans = plan_runs(runs, options.executable_sha256, options.force);
+  const std::vector<StepPlan> plans = plan_runs(runs, options.executable_sha256, options.force, options.rerun_all);
   std::vector<RunOutcome> out(runs.size());
   for (size_t r = 0; r < runs.size(); ++r) {
     out[r].run_id = runs[r].run_id;
@@ -234,9 +234,30 @@ void resolve_required_stages(const PipelineSpec& spec, const std::vector<fs::pat
 
 namespace {
 
-void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs, const std::vector<RunOutcome>& outcomes,
-                      const std::vector<fs::path>& executables, const std::vector<std::string>& hashes,
-                      const fs::path& out) {
+nlohmann::json run_provenance(const RunPlan& run, const RunOutcome& outcome, const std::vector<std::string>& hashes,
+                              size_t first_step) {
+  nlohmann::json jr = {{"run_id", run.run_id}, {"variables", nlohmann::json(run.variables)},
+                       {"steps", nlohmann::json::array()}};
+  for (size_t s = 0; s < run.steps.size(); ++s) {
+    const ResolvedStep& step = run.steps[s];
+    const StepOutcome& so = outcome.steps[s];
+    nlohmann::json js = {{"name", step.name}, {"stage", step.stage}, {"args", step.args}, {"status", so.status},
+                         {"cache_key", step_cache_key(hashes[first_step + s], step)}, {"inputs", nlohmann::json::array()}};
+    if (!so.run_reason.empty()) js["ran_because"] = so.run_reason;
+    if (so.status == "ok" || so.status == "cached")
+      for (const auto& in : read_step_stamp_inputs(run.run_dir, step.name))
+        js["inputs"].push_back({{"path", in.path}, {"sha256", in.sha256}});
+    jr["steps"].push_back(js);
+  }
+  return jr;
+}
+
+}  // namespace
+
+void write_provenance(const PipelineSpec& spec, const std::optional<RunPlan>& shared,
+                      const std::optional<RunOutcome>& shared_outcome, const std::vector<RunPlan>& runs,
+                      const std::vector<RunOutcome>& outcomes, const std::vector<fs::path>& executables,
+                      const std::vector<std::string>& hashes, const fs::path& out) {
   nlohmann::json p = {{"tool", {{"name", "valve"}, {"version", VALVE_VERSION}}},
                       {"created", timestamp()},
                       {"pipeline", {{"file", fs::absolute(spec.file).string()}, {"name", spec.name}}},
@@ -254,24 +275,12 @@ void write_provenance(const PipelineSpec& spec, const std::vector<RunPlan>& runs
   for (size_t i = 0; i < spec.steps.size(); ++i)
     p["stages"].push_back({{"step", spec.steps[i].name}, {"stage", spec.steps[i].stage},
                            {"executable", executables[i].string()}, {"sha256", hashes[i]}});
-  for (size_t r = 0; r < runs.size(); ++r) {
-    nlohmann::json jr = {{"run_id", runs[r].run_id}, {"variables", nlohmann::json(runs[r].variables)},
-                         {"steps", nlohmann::json::array()}};
-    for (size_t s = 0; s < runs[r].steps.size(); ++s) {
-      const ResolvedStep& step = runs[r].steps[s];
-      const StepOutcome& so = outcomes[r].steps[s];
-      nlohmann::json js = {{"name", step.name}, {"stage", step.stage}, {"args", step.args}, {"status", so.status},
-                           {"cache_key", step_cache_key(hashes[s], step)}, {"inputs", nlohmann::json::array()}};
-      if (!so.run_reason.empty()) js["ran_because"] = so.run_reason;
-      if (so.status == "ok" || so.status == "cached")
-        for (const auto& in : read_step_stamp_inputs(runs[r].run_dir, step.name))
-          js["inputs"].push_back({{"path", in.path}, {"sha256", in.sha256}});
-      jr["steps"].push_back(js);
-    }
-    p["runs"].push_back(jr);
-  }
+  if (shared && shared_outcome) p["shared"] = run_provenance(*shared, *shared_outcome, hashes, 0);
+  for (size_t r = 0; r < runs.size(); ++r) p["runs"].push_back(run_provenance(runs[r], outcomes[r], hashes, spec.shared_steps));
   write_file_atomic(out / "provenance.json", p.dump(2) + "\n");
 }
+
+namespace {
 
 // The runs and output folders of the pipelines `spec` requires (and they require), so that
 // a file in the way stops everything before the first run.
@@ -286,6 +295,19 @@ void check_required_folders(const PipelineSpec& spec, const fs::path& out) {
 }
 
 }  // namespace
+
+void write_tables(const PipelineSpec& spec, const std::vector<RunPlan>& runs, const fs::path& out,
+                  PipelineOutcome& result) {
+  // Aggregates read the tables as just made, in memory: earlier aggregates included.
+  std::map<std::string, CsvTable> tables;
+  for (const auto& csv : gather_csvs(spec)) result.tables.push_back(write_gather_csv(spec, csv, runs, out, &tables[csv]));
+  for (const auto& a : spec.aggregates)
+    result.aggregates.push_back(write_aggregate(a, tables.at(a.from), out, &tables[a.csv]));
+  const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
+  if (!spec.plots.empty() && !gnuplot)
+    std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
+  for (const auto& p : spec.plots) result.plots.push_back(render_plot(spec, p, out, gnuplot));
+}
 
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options) {
   // Everything that can reject the pipeline happens before the output folder is created.
@@ -319,33 +341,37 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   }
 
   Progress progress("valve-pipeline", options.quiet);
+  const std::optional<RunPlan> shared = shared_run(spec, out);
+  const size_t first_run_step = spec.shared_steps;
+  const std::vector<std::string> hashes = stage_hashes(exes);
+  ExecutionOptions exec;
+  exec.jobs = options.jobs;
+  exec.quiet = options.quiet;
+  exec.force = options.force;
+  exec.log = out / "pipeline.log";
+  auto report = [&](double fraction, const std::string& detail) { progress.update(fraction, detail); };
+  if (upstream_failure.empty() && shared) {
+    ExecutionOptions once = exec;
+    once.executable_sha256.assign(hashes.begin(), hashes.begin() + first_run_step);
+    result.shared = execute_runs({*shared}, {exes.begin(), exes.begin() + first_run_step}, once, report).front();
+    if (!result.shared->ok) upstream_failure = "the shared steps failed: " + result.shared->reason;
+    else if (std::any_of(result.shared->steps.begin(), result.shared->steps.end(),
+                         [](const StepOutcome& so) { return so.status == "ok"; }))
+      exec.rerun_all = "a shared step ran";
+  }
   if (upstream_failure.empty()) {
-    ExecutionOptions exec;
-    exec.jobs = options.jobs;
-    exec.quiet = options.quiet;
-    exec.force = options.force;
-    exec.executable_sha256 = stage_hashes(exes);
-    exec.log = out / "pipeline.log";
-    result.runs = execute_runs(
-        runs, exes, exec, [&](double fraction, const std::string& detail) { progress.update(fraction, detail); });
-    write_provenance(spec, runs, result.runs, exes, exec.executable_sha256, out);
-
-    // Aggregates read the tables as just made, in memory: earlier aggregates included.
-    std::map<std::string, CsvTable> tables;
-    for (const auto& csv : gather_csvs(spec)) result.tables.push_back(write_gather_csv(spec, csv, runs, out, &tables[csv]));
-    for (const auto& a : spec.aggregates)
-      result.aggregates.push_back(write_aggregate(a, tables.at(a.from), out, &tables[a.csv]));
-    const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
-    if (!spec.plots.empty() && !gnuplot)
-      std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
-    for (const auto& p : spec.plots) result.plots.push_back(render_plot(spec, p, out, gnuplot));
+    exec.executable_sha256.assign(hashes.begin() + first_run_step, hashes.end());
+    result.runs = execute_runs(runs, {exes.begin() + first_run_step, exes.end()}, exec, report);
+    write_provenance(spec, shared, result.shared, runs, result.runs, exes, hashes, out);
+    write_tables(spec, runs, out, result);
   } else {
     // No run starts; tables, plots and provenance are not touched.
     for (const auto& run : runs) {
       RunOutcome o;
       o.run_id = run.run_id;
       o.variables = run.variables;
-      o.reason = "not started: a required pipeline failed";
+      o.reason = result.shared && !result.shared->ok ? "not started: a shared step failed"
+                                                     : "not started: a required pipeline failed";
       result.runs.push_back(o);
     }
   }
@@ -357,6 +383,7 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
 
   result.status = failed_runs + failed_plots == 0 ? "ok" : "failed";
   if (!upstream_failure.empty()) {
+    result.status = "failed";
     result.reason = upstream_failure + "; no run of this pipeline started";
   } else if (failed_runs) {
     const RunOutcome& first = *std::find_if(result.runs.begin(), result.runs.end(), [](const RunOutcome& r) { return !r.ok; });
@@ -375,10 +402,9 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   m["stages"] = nlohmann::json::object();
   for (size_t i = 0; i < spec.steps.size(); ++i) m["stages"][spec.steps[i].stage] = exes[i].string();
   m["runs"] = nlohmann::json::array();
-  for (size_t r = 0; r < runs.size(); ++r) {
-    const RunOutcome& o = result.runs[r];
+  auto run_metrics = [&](const RunOutcome& o, const RunPlan& plan) {
     nlohmann::json jr = {{"run_id", o.run_id},
-                         {"run_dir", runs[r].run_dir.string()},
+                         {"run_dir", plan.run_dir.string()},
                          {"variables", nlohmann::json(o.variables)},
                          {"status", o.ok ? "ok" : "failed"},
                          {"wall_time_s", o.wall_time_s},
@@ -389,18 +415,20 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
       const StepOutcome& so = o.steps[s];
       jr["exit_codes"][so.name] = so.exit_code >= 0 ? nlohmann::json(so.exit_code) : nlohmann::json(nullptr);
       nlohmann::json js = {{"name", so.name},
-                           {"stage", runs[r].steps[s].stage},
+                           {"stage", plan.steps[s].stage},
                            {"status", so.status},
                            {"exit_code", jr["exit_codes"][so.name]},
                            {"cached", so.status == "cached"},
                            {"wall_time_s", so.wall_time_s},
                            {"cpu_time_s", so.cpu_time_s},
-                           {"log", (runs[r].run_dir / (so.name + ".log")).string()}};
+                           {"log", (plan.run_dir / (so.name + ".log")).string()}};
       if (!so.error.empty()) js["error"] = so.error;
       jr["steps"].push_back(js);
     }
-    m["runs"].push_back(jr);
-  }
+    return jr;
+  };
+  if (result.shared) m["shared"] = run_metrics(*result.shared, *shared);
+  for (size_t r = 0; r < runs.size(); ++r) m["runs"].push_back(run_metrics(result.runs[r], runs[r]));
   m["csv"] = nlohmann::json::array();
   for (const auto& t : result.tables) {
     nlohmann::json missing = nlohmann::json::array();

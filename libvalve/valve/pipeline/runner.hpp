@@ -13,6 +13,10 @@
 // DIR/<out> with the same jobs and force and all of its runs; if one fails, no run of this
 // pipeline starts and the summary says which (metrics.required lists each with its status).
 //
+// Shared steps (pipeline_spec.hpp) run first as the run "shared" in DIR/shared; if one fails,
+// no run starts; if one ran (was not cached), every step of every run runs, as a later step
+// of the same run would.
+//
 // Incremental runs (step_cache.hpp): the leading steps of a run that are up to date are not
 // run again ("cached"); from the first step that is not, every step runs. A run with no
 // cached step starts from an emptied folder (so a gather never picks up a stale summary
@@ -84,8 +88,9 @@ using StepPlan = std::vector<std::optional<std::string>>;
 
 /// What an invocation would do: the leading up-to-date steps of each run are cached, the
 /// rest run. `executable_sha256[i]` is the hash of step i's program.
+/// `rerun_all`, when not empty, makes every step run for that reason (an upstream step ran).
 std::vector<StepPlan> plan_runs(const std::vector<RunPlan>& runs, const std::vector<std::string>& executable_sha256,
-                                bool force);
+                                bool force, const std::string& rerun_all = "");
 
 struct ExecutionOptions {
   int jobs = 1;
@@ -93,6 +98,7 @@ struct ExecutionOptions {
   bool force = false;
   std::vector<std::string> executable_sha256;  ///< per step, for the cache keys
   std::filesystem::path log;                    ///< appended run log; empty: none
+  std::string rerun_all;                        ///< see plan_runs
 };
 
 /// Runs every run, at most `jobs` at a time, each a sequence of child processes. Results
@@ -102,6 +108,7 @@ std::vector<RunOutcome> execute_runs(const std::vector<RunPlan>& runs,
                                      const ExecutionOptions& options, const RunProgress& progress = {});
 
 struct PipelineOutcome {
+  std::optional<RunOutcome> shared;         ///< the shared steps (pipeline_spec.hpp), run first
   std::vector<RunOutcome> runs;
   std::vector<GatherResult> tables;         ///< one per gather csv, in order of first appearance
   std::vector<AggregateResult> aggregates;  ///< one per aggregate entry
@@ -114,5 +121,16 @@ struct PipelineOutcome {
 /// Resolves the stages (throws InputError before writing anything), then runs, gathers,
 /// aggregates, plots and writes DIR/pipeline.summary.json.
 PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& options);
+
+/// The gather tables, aggregates and plots of `runs` in out_dir, as run_pipeline writes them.
+void write_tables(const PipelineSpec& spec, const std::vector<RunPlan>& runs, const std::filesystem::path& out_dir,
+                  PipelineOutcome& result);
+
+/// Writes DIR/provenance.json for the shared run (if any) and the runs with their outcomes.
+/// `hashes` has one entry per step of the spec.
+void write_provenance(const PipelineSpec& spec, const std::optional<RunPlan>& shared,
+                      const std::optional<RunOutcome>& shared_outcome, const std::vector<RunPlan>& runs,
+                      const std::vector<RunOutcome>& outcomes, const std::vector<std::filesystem::path>& executables,
+                      const std::vector<std::string>& hashes, const std::filesystem::path& out);
 
 }  // namespace valve
