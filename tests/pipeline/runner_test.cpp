@@ -4,6 +4,7 @@
 
 #include "pipeline_test_support.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/install_layout.hpp"
 #include "valve/pipeline/process.hpp"
 #include "valve/pipeline/snakemake_export.hpp"
 #include "valve/pipeline/step_cache.hpp"
@@ -180,7 +181,7 @@ TEST_CASE("process: stage lookup order and shell quoting", "[pipeline]") {
   const auto dirs = default_stage_dirs({tmp.path()});
   REQUIRE(dirs.size() >= 2);
   CHECK(dirs[0] == tmp.path());
-  CHECK(dirs[1] == self_executable_dir());
+  CHECK(dirs[1] == executable_directory());
 }
 
 TEST_CASE("runner: unchanged steps are cached, changed inputs and failures rerun, --force reruns all", "[pipeline]") {

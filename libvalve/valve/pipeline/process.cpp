@@ -13,6 +13,7 @@
 #include <cstring>
 
 #include "valve/core/error.hpp"
+#include "valve/core/install_layout.hpp"
 
 extern char** environ;
 
@@ -52,15 +53,9 @@ ProcessExit decode_status(int status, const struct rusage& ru) {
 
 }  // namespace
 
-fs::path self_executable_dir() {
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  return ec ? fs::path() : exe.parent_path();
-}
-
 std::vector<fs::path> default_stage_dirs(const std::vector<fs::path>& extra) {
   std::vector<fs::path> dirs = extra;
-  const fs::path self = self_executable_dir();
+  const fs::path self = executable_directory();
   if (!self.empty()) {
     // In the build tree the stages directory is both: list it once (it is shown in errors).
     for (const fs::path& d : {self, (self / ".." / "stages").lexically_normal()})

@@ -14,9 +14,6 @@
 
 namespace valve {
 
-/// Directory of the running executable (/proc/self/exe); empty if it cannot be read.
-std::filesystem::path self_executable_dir();
-
 /// The default stage directories after `extra`: the executable's directory and ../stages.
 std::vector<std::filesystem::path> default_stage_dirs(const std::vector<std::filesystem::path>& extra);
 
