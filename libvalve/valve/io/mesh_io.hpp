@@ -14,15 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "valve/mesh/named_array.hpp"
 #include "valve/mesh/tri_mesh.hpp"
 
 namespace valve {
-
-struct NamedArray {
-  std::string name;
-  Eigen::MatrixXd values;  // one row per point (or cell), one column per component
-  bool per_cell = false;
-};
 
 /// Reads a triangle mesh. Throws InputError (file, what was expected, what was found) for
 /// unreadable files, unknown extensions, non-triangle cells and meshes without cells.
