@@ -23,7 +23,6 @@
 // and thickness read from the deck's *Shell Section and *Material, for a scene's
 // "leaflet_materials"; a material kind valve does not model is refused, exit 2) and
 // phantom.summary.json.
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -37,6 +36,7 @@
 #include "valve/core/stage_arguments.hpp"
 #include "valve/imaging/mitral_phantom.hpp"
 #include "valve/imaging/voxelize.hpp"
+#include "valve/analysis/annulus_targets.hpp"
 #include "valve/io/abaqus_inp.hpp"
 #include "valve/io/image_io.hpp"
 #include "valve/io/mesh_io.hpp"
@@ -89,22 +89,6 @@ PhantomGeometry mitral_geometry(StageArguments& args, double spacing, std::uint6
   return g;
 }
 
-// The atrial direction of a valve mesh: the normal of the annulus nodes' best-fit plane,
-// pointing away from the leaflets (which hang into the ventricle); +z without an annulus.
-Vec3 atrial_direction(const TriMesh& leaflets) {
-  std::vector<int> ring_nodes;
-  for (int i = 0; i < leaflets.num_nodes(); ++i)
-    if (leaflets.boundary[i] == BoundaryType::attached || leaflets.roles[i] == NodeRole::fixed) ring_nodes.push_back(i);
-  if (ring_nodes.size() < 3) return Vec3::UnitZ();
-  MatX3 ring(ring_nodes.size(), 3);
-  for (size_t k = 0; k < ring_nodes.size(); ++k) ring.row(k) = leaflets.points.row(ring_nodes[k]);
-  const Vec3 centre = ring.colwise().mean().transpose();
-  const MatX3 d = ring.rowwise() - centre.transpose();
-  Vec3 atrial = Eigen::SelfAdjointEigenSolver<Mat3>(d.transpose() * d).eigenvectors().col(0);
-  if ((leaflets.points.colwise().mean().transpose() - centre).dot(atrial) > 0) atrial = -atrial;
-  return atrial;
-}
-
 PhantomGeometry model_geometry(StageArguments& args, bool chordae, std::optional<ChordaeNetwork>* network) {
   const std::string inp = args.text("inp", "");
   if (inp.empty()) throw InputError("valve-phantom ttv: --inp: expected the Abaqus model (.inp), found nothing");
@@ -130,7 +114,7 @@ PhantomGeometry model_geometry(StageArguments& args, bool chordae, std::optional
     for (const auto& [a, b] : lines) g.chord_segments.emplace_back(model.points.row(a).transpose(), model.points.row(b).transpose());
   int annulus = 0, free_edge = 0;
   for (BoundaryType b : g.leaflets.boundary) annulus += b == BoundaryType::attached, free_edge += b == BoundaryType::free_edge;
-  const Vec3 atrial = atrial_direction(g.leaflets);
+  const Vec3 atrial = annulus_atrial_direction(g.leaflets);
   g.description = {{"model", inp},
                    {"atrial_direction", {atrial.x(), atrial.y(), atrial.z()}},
                    {"frame", frame.empty() ? std::string("(the .inp coordinates)") : frame},
@@ -162,7 +146,7 @@ PhantomGeometry surface_geometry(StageArguments& args) {
   g.chord_diameter = args.length_mm("chord-diameter", 0.5, 0.05, 5);
   const std::string lines = args.text("lines", "");
   if (!lines.empty()) g.chord_segments = read_line_segments(lines);
-  const Vec3 atrial = atrial_direction(g.leaflets);
+  const Vec3 atrial = annulus_atrial_direction(g.leaflets);
   g.description = {{"mesh", mesh},
                    {"atrial_direction", {atrial.x(), atrial.y(), atrial.z()}},
                    {"leaflet_nodes", g.leaflets.num_nodes()},

@@ -105,3 +105,31 @@ TEST_CASE("a closed mesh without an annulus is an error naming the file", "[anal
   CHECK_THROWS_WITH(annulus_targets(open, closed, true, "open.vtp", "closed.vtp"),
                     Catch::Contains("closed.vtp") && Catch::Contains("annulus"));
 }
+
+TEST_CASE("The atrial direction is the annulus plane's normal, pointing away from the leaflets", "[annulus]") {
+  // A funnel: an annulus circle of radius 10 in z = 0 (fixed) and the leaflets' inner circle of
+  // radius 5 hanging 5 mm below: the atrial direction is +z, and turns with the mesh.
+  const int n = 24;
+  TriMesh m;
+  m.points.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    const double t = 2 * M_PI * i / n;
+    m.points.row(i) << 10 * std::cos(t), 10 * std::sin(t), 0;
+    m.points.row(n + i) << 5 * std::cos(t), 5 * std::sin(t), -5;
+  }
+  for (int i = 0; i < n; ++i) {
+    const int j = (i + 1) % n;
+    m.triangles.emplace_back(i, j, n + j);
+    m.triangles.emplace_back(i, n + j, n + i);
+  }
+  m.fill_defaults();
+  CHECK(annulus_atrial_direction(m).isApprox(Vec3::UnitZ()));  // no annulus marked: +z by default
+  m.points.col(2) *= -1;  // hanging up now: still +z without an annulus
+  CHECK(annulus_atrial_direction(m).isApprox(Vec3::UnitZ()));
+  for (int i = 0; i < n; ++i) m.roles[i] = NodeRole::fixed;
+  CHECK(annulus_atrial_direction(m).isApprox(-Vec3::UnitZ(), 1e-12));  // away from the leaflets above
+  m.points.col(2) *= -1;
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  m.points = (m.points * R.transpose()).eval();
+  CHECK(annulus_atrial_direction(m).isApprox(R * Vec3::UnitZ(), 1e-12));
+}

@@ -380,13 +380,23 @@ TEST_CASE("max_wall_seconds bounds a whole closure, not each load increment", "[
       const SceneConfig limited = parse_scene(j, "limited.json", ".");
       auto sys = build_system(limited, mesh);
       const auto res = simulate(limited, mesh, *sys);
-      CHECK(res.summary.status == SolverStatus::not_converged);
-      CHECK_THAT(res.summary.reason, Catch::Contains("max_wall_seconds"));
-      CHECK(res.increments.size() < increments);
       double spent = 0;
       for (const auto& inc : res.increments) spent += inc.summary.wall_seconds;
-      // Past the limit by at most one step or iteration (a fraction of an increment).
-      CHECK(spent < limit + longest);
+      INFO("limited run: " << res.increments.size() << " of " << increments << " increments in " << spent << " s, "
+                           << res.summary.reason);
+      if (res.summary.status == SolverStatus::ok) {
+        // This run was faster than the measured ones (a shared machine): it may finish, but
+        // within the limit; a per-increment limit would let it run to the whole time.
+        CHECK(spent <= limit + 0.25 * (total - longest));
+      } else {
+        CHECK(res.summary.status == SolverStatus::not_converged);
+        CHECK_THAT(res.summary.reason, Catch::Contains("max_wall_seconds"));
+        CHECK(res.increments.size() < increments);
+        // Stopped by the shared budget, not its own: the last increment alone took less than
+        // the limit, and the run went past it by at most one step or iteration.
+        CHECK(res.increments.back().summary.wall_seconds < limit);
+        CHECK(spent < limit + longest);
+      }
     }
   }
 }

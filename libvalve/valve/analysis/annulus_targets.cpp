@@ -1,5 +1,6 @@
 #include "valve/analysis/annulus_targets.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,20 @@
 #include "valve/mesh/topology.hpp"
 
 namespace valve {
+
+Vec3 annulus_atrial_direction(const TriMesh& mesh) {
+  std::vector<int> ring_nodes;
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    if (mesh.boundary[i] == BoundaryType::attached || mesh.roles[i] == NodeRole::fixed) ring_nodes.push_back(i);
+  if (ring_nodes.size() < 3) return Vec3::UnitZ();
+  MatX3 ring(ring_nodes.size(), 3);
+  for (size_t k = 0; k < ring_nodes.size(); ++k) ring.row(k) = mesh.points.row(ring_nodes[k]);
+  const Vec3 centre = ring.colwise().mean().transpose();
+  const MatX3 d = ring.rowwise() - centre.transpose();
+  Vec3 atrial = Eigen::SelfAdjointEigenSolver<Mat3>(d.transpose() * d).eigenvectors().col(0);
+  if ((mesh.points.colwise().mean().transpose() - centre).dot(atrial) > 0) atrial = -atrial;
+  return atrial;
+}
 
 namespace {
 

@@ -16,6 +16,11 @@ namespace valve {
 /// nodes. Empty if the mesh has no boundary loop with a marked node.
 std::vector<int> annulus_ring(const TriMesh& mesh);
 
+/// The atrial direction of a valve mesh: the normal of the best-fit plane (least-squares, the
+/// covariance's smallest eigenvector) of its fixed or attached nodes, pointing away from the
+/// leaflets' centroid (the leaflets hang into the ventricle); +z with fewer than 3 such nodes.
+Vec3 annulus_atrial_direction(const TriMesh& mesh);
+
 /// `count` points equally spaced by arc length along the closed polyline through `ring`
 /// (rows in order): ICP against ring nodes directly would lock onto node spacing.
 MatX3 resample_ring(const MatX3& ring, int count);

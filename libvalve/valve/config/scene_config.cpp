@@ -18,43 +18,43 @@ fs::path resolve(const fs::path& base_dir, const std::string& path) {
 void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.truncation_tolerance = r.quantity("truncation_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
   o.displacement_tolerance = r.quantity("displacement_tolerance", Dimension::length, std::string("1e-5 mm"), 1e-15, 10);
-  o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-3, 0.0, 1.0);
-  o.quiet_steps = r.integer("quiet_steps", 3, 1, 1000000);
+  o.relative_residual_tolerance = r.number("relative_residual_tolerance", o.relative_residual_tolerance, 0.0, 1.0);
+  o.quiet_steps = r.integer("quiet_steps", o.quiet_steps, 1, 1000000);
   o.settle_window = r.quantity("settle_window", Dimension::time, std::string("0 ms"), 0.0, 1e9);
   o.settle_tolerance = r.quantity("settle_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
   o.initial_step = r.quantity("initial_step", Dimension::time, std::string("0.001 ms"), 1e-12, 1e6);
   o.min_step = r.quantity("min_step", Dimension::time, std::string("1e-10 ms"), 1e-20, 1e6);
   o.max_step = r.quantity("max_step", Dimension::time, std::string("50 ms"), 1e-12, 1e9);
-  o.min_steps = r.integer("min_steps", 10, 0, 1000000);
-  o.max_steps = r.integer("max_steps", 200000, 1, 2000000000);
+  o.min_steps = r.integer("min_steps", o.min_steps, 0, 1000000);
+  o.max_steps = r.integer("max_steps", o.max_steps, 1, 2000000000);
   o.max_time = r.quantity("max_time", Dimension::time, std::string("1e6 ms"), 1e-9, 1e15);
-  o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
-  o.adaptive = r.boolean("adaptive", true);
+  o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
+  o.adaptive = r.boolean("adaptive", o.adaptive);
   o.error_estimate = r.choice("error_estimate", {"step_doubling", "predictor"}, std::string("step_doubling")) ==
                              "predictor"
                          ? ErrorEstimate::predictor
                          : ErrorEstimate::step_doubling;
   o.linear_solver = parse_linear_solver(
       r.choice("linear_solver", linear_solver_names(), std::string("auto")));
-  o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
-  o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
+  o.iterative_tolerance = r.number("iterative_tolerance", o.iterative_tolerance, 1e-16, 1e-1);
+  o.iterative_max_iterations = r.integer("iterative_max_iterations", o.iterative_max_iterations, 1, 10000000);
 }
 
 void parse_static(JsonReader& r, StaticOptions& o) {
-  o.relative_residual_tolerance = r.number("relative_residual_tolerance", 1e-9, 1e-16, 1.0);
-  o.max_newton_iterations = r.integer("max_newton_iterations", 500, 1, 10000000);
-  o.initial_increment = r.number("initial_increment", 1.0, 1e-9, 1.0);
-  o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", 1e-2, 1e-20, 1e20);
-  o.max_strain_increment = r.number("max_strain_increment", 0.0, 0.0, 10.0);
+  o.relative_residual_tolerance = r.number("relative_residual_tolerance", o.relative_residual_tolerance, 1e-16, 1.0);
+  o.max_newton_iterations = r.integer("max_newton_iterations", o.max_newton_iterations, 1, 10000000);
+  o.initial_increment = r.number("initial_increment", o.initial_increment, 1e-9, 1.0);
+  o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", o.initial_pseudo_step, 1e-20, 1e20);
+  o.max_strain_increment = r.number("max_strain_increment", o.max_strain_increment, 0.0, 10.0);
   if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
   else r.record("trust_radius", "2.5% of the bounding-box diagonal");
-  o.min_increment = r.number("min_increment", 1e-5, 1e-15, 1.0);
-  o.max_increments = r.integer("max_increments", 2000, 1, 100000000);
-  o.max_wall_seconds = r.number("max_wall_seconds", 600.0, 0.001, 1e7);
+  o.min_increment = r.number("min_increment", o.min_increment, 1e-15, 1.0);
+  o.max_increments = r.integer("max_increments", o.max_increments, 1, 100000000);
+  o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
   o.linear_solver = parse_linear_solver(
       r.choice("linear_solver", linear_solver_names(), std::string("auto")));
-  o.iterative_tolerance = r.number("iterative_tolerance", 1e-10, 1e-16, 1e-1);
-  o.iterative_max_iterations = r.integer("iterative_max_iterations", 5000, 1, 10000000);
+  o.iterative_tolerance = r.number("iterative_tolerance", o.iterative_tolerance, 1e-16, 1e-1);
+  o.iterative_max_iterations = r.integer("iterative_max_iterations", o.iterative_max_iterations, 1, 10000000);
 }
 
 void parse_quasistatic(JsonReader& r, QuasistaticOptions& o) {
@@ -387,7 +387,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   {
     JsonReader o = r.object("output");
     sc.time_series = o.boolean("time_series", false);
-    sc.time_series_every = o.integer("every", 10, 1, 1000000);
+    sc.time_series_every = o.integer("every", sc.time_series_every, 1, 1000000);
     r.record("output", o.finish());
   }
   sc.used = r.finish();

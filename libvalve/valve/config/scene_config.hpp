@@ -138,7 +138,7 @@ struct SceneConfig {
   MonitorConfig monitor;
   std::optional<StrainMarkerConfig> strain_markers;
   bool time_series = false;
-  int time_series_every = 1;
+  int time_series_every = 10;  // accepted steps between frames
   json used;
 };
 
