@@ -9,7 +9,7 @@
 // --mesh-copies stl,ply,obj,vtk: the result mesh also in those formats beside its .vtp (same
 // stem, LPS mm; .stl, .ply and .obj hold the geometry only, for printing and CAD).
 // A digital phantom with known ground truth: the parametric open mitral valve of
-// libvalve/imaging/mitral_phantom.hpp, or a finite element valve model from an Abaqus deck
+// libvalve/phantom/mitral_phantom.hpp, or a finite element valve model from an Abaqus deck
 // (Texas TriValve: S4R leaflet shells split into triangles, T3D2 chordae; --frame takes the
 // node positions of a .vtu frame, e.g. frame 20 = closed), voxelized into a micro-CT-like
 // volume (partial volume, Gaussian blur of --blur mm, Gaussian noise of standard deviation
@@ -34,7 +34,7 @@
 #include "valve/core/error.hpp"
 #include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
-#include "valve/imaging/mitral_phantom.hpp"
+#include "valve/phantom/mitral_phantom.hpp"
 #include "valve/imaging/voxelize.hpp"
 #include "valve/analysis/annulus_targets.hpp"
 #include "valve/io/abaqus_inp.hpp"

@@ -5,7 +5,7 @@
 
 #include "valve/chordae/chordae_network.hpp"
 #include "valve/core/error.hpp"
-#include "valve/imaging/mitral_phantom.hpp"
+#include "valve/phantom/mitral_phantom.hpp"
 
 using namespace valve;
 

@@ -24,7 +24,7 @@
 
 #include "valve/imaging/segmentation.hpp"
 #include "valve/core/error.hpp"
-#include "valve/io/itk_image.hpp"
+#include "valve/imaging/itk_image.hpp"
 
 namespace valve {
 namespace {

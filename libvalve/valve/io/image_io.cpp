@@ -27,7 +27,7 @@
 #include "valve/core/atomic_file.hpp"
 #include "valve/io/image_io.hpp"
 #include "valve/core/error.hpp"
-#include "valve/io/itk_image.hpp"
+#include "valve/imaging/itk_image.hpp"
 
 namespace valve {
 namespace fs = std::filesystem;

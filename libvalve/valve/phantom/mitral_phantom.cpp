@@ -1,4 +1,4 @@
-#include "valve/imaging/mitral_phantom.hpp"
+#include "valve/phantom/mitral_phantom.hpp"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "valve/imaging/mitral_phantom.hpp"
+#include "valve/phantom/mitral_phantom.hpp"
 #include "valve/mesh/quality.hpp"
 #include "valve/mesh/topology.hpp"
 
