@@ -12,7 +12,7 @@ ctest -j2 --output-on-failure --timeout 900
 # build of libvalve (about 7 minutes on 2 cores), run when the set-up, build and suite above
 # left it room in CI's 30 minutes ($SECONDS counts from this script's start).
 cd ..
-if [ "$SECONDS" -lt 1200 ] || [ "${VALVE_SANITIZE_ALWAYS:-0}" = 1 ]; then
+if [ "$SECONDS" -lt 1080 ] || [ "${VALVE_SANITIZE_ALWAYS:-0}" = 1 ]; then
   bash .ci/sanitize.sh
 else
   echo "sanitizer run skipped: the suite took ${SECONDS} s of the 30 minutes (run bash .ci/sanitize.sh)"
