@@ -428,16 +428,12 @@ int write_with(const fs::path& tmp, vtkPolyData* pd, Configure configure) {
   return w->Write();
 }
 
-}  // namespace
-
-void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* positions,
-                const std::vector<NamedArray>& extra) {
-  const std::string ext = lower_extension(path);
-  if (std::find(kMeshWriteExtensions.begin(), kMeshWriteExtensions.end(), ext) == kMeshWriteExtensions.end())
-    throw_input_error(path.string(), "extension", ".vtp|.vtk|.stl|.ply|.obj", "\"" + ext + "\"");
+// The mesh as VTK poly data with its arrays, built once for every format it is written in.
+vtkSmartPointer<vtkPolyData> mesh_polydata(const fs::path& path, const TriMesh& mesh, const MatX3* positions,
+                                           const std::vector<NamedArray>& extra) {
   const MatX3& x = positions ? *positions : mesh.points;
   if (!x.allFinite()) throw NumericalError(path.string() + ": refusing to write non-finite coordinates");
-  vtkNew<vtkPolyData> pd;
+  auto pd = vtkSmartPointer<vtkPolyData>::New();
   set_points(pd, x);
   vtkNew<vtkCellArray> polys;
   for (const auto& t : mesh.triangles) {
@@ -468,6 +464,19 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
     add_double_array(pd->GetPointData(), "InitialDisplacement", d);
   }
   add_named_arrays(pd, extra, mesh.num_triangles(), "write_mesh");
+  return pd;
+}
+
+// The extension, lower case, if write_polydata writes it; else an InputError naming `path`.
+std::string mesh_write_extension(const fs::path& path) {
+  const std::string ext = lower_extension(path);
+  if (std::find(kMeshWriteExtensions.begin(), kMeshWriteExtensions.end(), ext) == kMeshWriteExtensions.end())
+    throw_input_error(path.string(), "extension", ".vtp|.vtk|.stl|.ply|.obj", "\"" + ext + "\"");
+  return ext;
+}
+
+void write_polydata(const fs::path& path, vtkPolyData* pd) {
+  const std::string ext = mesh_write_extension(path);
   write_via_temp(path, [&](const fs::path& tmp) {
     if (ext == ".vtp") return write_vtp(path, tmp, pd);
     int ok = 0;
@@ -482,6 +491,14 @@ void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* position
     }
     if (ok != 1) throw Error(path.string() + ": VTK could not write the file");
   });
+}
+
+}  // namespace
+
+void write_mesh(const fs::path& path, const TriMesh& mesh, const MatX3* positions,
+                const std::vector<NamedArray>& extra) {
+  mesh_write_extension(path);  // before any work
+  write_polydata(path, mesh_polydata(path, mesh, positions, extra));
 }
 
 std::vector<std::string> parse_mesh_copies(const std::optional<std::string>& value) {
@@ -499,9 +516,11 @@ std::vector<std::string> parse_mesh_copies(const std::optional<std::string>& val
 
 void write_mesh_copies(const fs::path& path, const std::vector<std::string>& formats, const TriMesh& mesh,
                        const MatX3* positions, const std::vector<NamedArray>& extra) {
+  if (formats.empty()) return;
+  const vtkSmartPointer<vtkPolyData> pd = mesh_polydata(path, mesh, positions, extra);
   for (const auto& format : formats) {
     fs::path copy = path;
-    write_mesh(copy.replace_extension("." + format), mesh, positions, extra);
+    write_polydata(copy.replace_extension("." + format), pd);
   }
 }
 
