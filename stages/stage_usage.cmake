@@ -1,6 +1,7 @@
-# cmake -DSOURCE=stage/main.cpp -DOUTPUT=stage_usage.hpp -P stage_usage.cmake
+# cmake -DSOURCE=stage/main.cpp -DOUTPUT=stage_usage.hpp [-DPAGE=docs/stages/NAME.md -DNAME=NAME] -P stage_usage.cmake
 # A stage's --help text is its main.cpp's leading comment block (usage, what it reads and
-# writes, exit codes), so the documentation and the help cannot drift apart.
+# writes, exit codes), so the documentation and the help cannot drift apart. PAGE gets the
+# same text as the stage's markdown page (docs/stages/NAME.md is a copy, checked by a test).
 file(READ "${SOURCE}" content)
 string(REGEX MATCH "^(//[^\n]*\n)+" header "${content}")
 if(header STREQUAL "")
@@ -13,6 +14,18 @@ string(APPEND text "\nEvery stage also takes:\n"
   "      <filter-progress> lines on stdout, or not at all\n"
   "  --xml   prints the stage's 3D Slicer CLI module description (XML) and exits\n"
   "  --help  prints this text and exits\n")
+if(DEFINED PAGE)
+  set(page "# ${NAME}\n\nWhat `${NAME} --help` prints: the leading comment of\n"
+           "[`stages/${NAME}/main.cpp`](../../stages/${NAME}/main.cpp), made into this page when the stage is built.\n\n"
+           "```text\n${text}```\n")
+  set(previous_page "")
+  if(EXISTS "${PAGE}")
+    file(READ "${PAGE}" previous_page)
+  endif()
+  if(NOT previous_page STREQUAL page)
+    file(WRITE "${PAGE}" "${page}")
+  endif()
+endif()
 set(generated "// Generated from ${SOURCE} by stages/stage_usage.cmake.\n#pragma once\ninline constexpr const char* kStageUsage = R\"usage(${text})usage\";\n")
 if(EXISTS "${OUTPUT}")
   file(READ "${OUTPUT}" previous)

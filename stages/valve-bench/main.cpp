@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/stage_arguments.hpp"

@@ -16,7 +16,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"

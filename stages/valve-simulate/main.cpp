@@ -9,6 +9,7 @@
 // leaflets also DIR/coaptation_columns.csv (the coaptation band's height down each column of
 // every free edge, analysis/coaptation.hpp). DIR/closed.landmarks.mrk.json holds the closed
 // annulus ring, free edges and (several leaflets) coaptation line as 3D Slicer markup curves.
+// valve-simulate --scene-keys prints every scene key (type, default, range) as a markdown table.
 // Exit 0 ok, 2 bad input, 3 not converged or failed (the summary says why; a non-converged
 // run still writes its last state, a failed one writes no mesh).
 #include <cstdio>
@@ -16,7 +17,7 @@
 #include <memory>
 
 #include "valve/chordae/slicer_markups.hpp"
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
@@ -35,7 +36,11 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   limit_blas_threads_unless_set();
   return run_stage("valve-simulate", kStageUsage, [&] {
-    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set", "mesh-copies"}, {"time-series", "quiet"});
+    CommandLine cl(argc, argv, {"scene", "config", "out", "mesh", "model", "pressure", "solver", "set", "mesh-copies"}, {"time-series", "quiet", "scene-keys"});
+    if (cl.has("scene-keys")) {
+      std::fputs(scene_key_table_markdown().c_str(), stdout);
+      return 0;
+    }
     const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     const fs::path scene_file = cl.get("scene") ? *cl.get("scene") : cl.require("config");
     const fs::path out = cl.require("out");

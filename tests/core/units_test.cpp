@@ -24,3 +24,12 @@ TEST_CASE("ambiguous or wrong units are rejected with the key named", "[core]") 
   CHECK_THROWS_AS(parse_quantity("abc kPa", Dimension::pressure, "k"), InputError);
   CHECK_THROWS_AS(parse_quantity("nan kPa", Dimension::pressure, "k"), InputError);
 }
+
+TEST_CASE("format_quantity writes internal values that parse back exactly", "[core]") {
+  CHECK(format_quantity(0.65, Dimension::length) == "0.65 mm");
+  CHECK(format_quantity(1.06e-3, Dimension::density) == "0.00106 g/mm^3");
+  for (const double x : {0.1, 1.0 / 3.0, 2.5e-7, 1e12}) {
+    CHECK(parse_quantity(format_quantity(x, Dimension::pressure), Dimension::pressure, "k") == x);
+    CHECK(parse_quantity(format_quantity(x, Dimension::density), Dimension::density, "k") == x);
+  }
+}

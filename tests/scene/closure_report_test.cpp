@@ -2,7 +2,7 @@
 // flat patch, and the counts of a real closure.
 #include <catch2/catch.hpp>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/core/error.hpp"
 #include "valve/mesh/generators.hpp"
 #include "valve/scene/closure_report.hpp"

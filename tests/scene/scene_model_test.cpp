@@ -4,7 +4,7 @@
 // membrane, now slack, has followed inward without folding.
 #include <catch2/catch.hpp>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/mesh/quality.hpp"
 #include "valve/scene/scene_model.hpp"
 #include "valve/scene/simulation.hpp"

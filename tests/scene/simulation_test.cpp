@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "valve/analysis/leaflet_metrics.hpp"
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/mesh/generators.hpp"
 #include "valve/scene/biaxial_protocol.hpp"
 #include "valve/scene/simulation.hpp"

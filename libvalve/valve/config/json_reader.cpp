@@ -1,6 +1,8 @@
 #include "valve/config/json_reader.hpp"
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 #include "valve/core/atomic_file.hpp"
@@ -14,6 +16,68 @@ std::string describe_json(const json& v) {
   std::string dump = v.dump();
   if (dump.size() > 60) dump = dump.substr(0, 57) + "...";
   return std::string(v.type_name()) + " " + dump;
+}
+
+namespace {
+thread_local KeySpecRecorder* active_recorder = nullptr;
+
+// "[min, max]", "≥ min" or "≤ max" with each bound formatted by `text`; empty without bounds.
+// A range bound for the key tables: 1e+12 reads better there as 1e12.
+std::string bound_text(double x) {
+  if (x == static_cast<long long>(x) && std::fabs(x) < 1e6) return format_number(x);
+  char buf[40];
+  for (int p = 1; p <= 17; ++p) {
+    std::snprintf(buf, sizeof buf, "%.*g", p, x);
+    if (std::strtod(buf, nullptr) == x) break;
+  }
+  std::string text = buf;
+  for (const char* noise : {"e+0", "e+", "e-0"}) {
+    const auto at = text.find(noise);
+    if (at != std::string::npos) {
+      text.replace(at, std::string(noise).size(), noise[1] == '-' ? "e-" : "e");
+      break;
+    }
+  }
+  return text;
+}
+
+template <class T, class Text>
+std::string range_text(T min, T max, T no_min, T no_max, Text text) {
+  if (min > no_min && max < no_max) return "[" + text(min) + ", " + text(max) + "]";
+  if (min > no_min) return "≥ " + text(min);
+  if (max < no_max) return "≤ " + text(max);
+  return "";
+}
+}  // namespace
+
+KeySpecRecorder::KeySpecRecorder(std::string file) : file_(std::move(file)), previous_(active_recorder) {
+  active_recorder = this;
+}
+KeySpecRecorder::~KeySpecRecorder() { active_recorder = previous_; }
+KeySpecRecorder* KeySpecRecorder::active() { return active_recorder; }
+
+void KeySpecRecorder::note(const KeySpec& spec, bool overwrite) {
+  for (auto& k : keys_) {
+    if (k.path != spec.path) continue;
+    if (overwrite) {
+      if (!spec.type.empty()) k.type = spec.type;
+      if (!spec.default_value.empty()) k.default_value = spec.default_value;
+      if (!spec.range.empty()) k.range = spec.range;
+    }
+    return;
+  }
+  keys_.push_back(spec);
+}
+
+void JsonReader::note(const std::string& key, const std::string& type, const std::string& default_value,
+                      const std::string& range) const {
+  if (active_recorder && active_recorder->file() == file_)
+    active_recorder->note({key_path(key), type, default_value, range}, false);
+}
+
+void JsonReader::document(const std::string& key, const std::string& type, const std::string& default_value) const {
+  if (active_recorder && active_recorder->file() == file_)
+    active_recorder->note({key_path(key), type, default_value, ""}, true);
 }
 
 JsonReader::JsonReader(const json& object, std::string file, std::string path)
@@ -41,6 +105,8 @@ const json* JsonReader::find(const std::string& key) {
 
 double JsonReader::number(const std::string& key, std::optional<double> fallback, double min,
                           double max) {
+  note(key, "number", fallback ? format_number(*fallback) : "required",
+       range_text(min, max, -1e300, 1e300, bound_text));
   const json* v = find(key);
   double x;
   if (!v) {
@@ -60,6 +126,8 @@ double JsonReader::number(const std::string& key, std::optional<double> fallback
 }
 
 int JsonReader::integer(const std::string& key, std::optional<int> fallback, int min, int max) {
+  note(key, "integer", fallback ? std::to_string(*fallback) : "required",
+       range_text(min, max, -2147483647, 2147483647, [](int x) { return bound_text(x); }));
   const json* v = find(key);
   long long x;
   if (!v) {
@@ -77,6 +145,7 @@ int JsonReader::integer(const std::string& key, std::optional<int> fallback, int
 }
 
 bool JsonReader::boolean(const std::string& key, std::optional<bool> fallback) {
+  note(key, "true or false", fallback ? (*fallback ? "true" : "false") : "required", "");
   const json* v = find(key);
   bool x;
   if (!v) {
@@ -91,6 +160,7 @@ bool JsonReader::boolean(const std::string& key, std::optional<bool> fallback) {
 }
 
 std::string JsonReader::string(const std::string& key, std::optional<std::string> fallback) {
+  note(key, "string", fallback ? json(*fallback).dump() : "required", "");
   const json* v = find(key);
   std::string x;
   if (!v) {
@@ -106,16 +176,32 @@ std::string JsonReader::string(const std::string& key, std::optional<std::string
 
 std::string JsonReader::choice(const std::string& key, const std::vector<std::string>& choices,
                                std::optional<std::string> fallback) {
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : "|") + c;
+  note(key, "one of " + list, fallback ? *fallback : "required", "");
   const std::string x = string(key, std::move(fallback));
   for (const auto& c : choices)
     if (c == x) return x;
-  std::string list;
-  for (const auto& c : choices) list += (list.empty() ? "" : "|") + c;
   fail(key, "one of " + list, "\"" + x + "\"");
 }
 
 double JsonReader::quantity(const std::string& key, Dimension dim,
                             std::optional<std::string> fallback, double min, double max) {
+  return quantity_from_text(key, dim, fallback ? &*fallback : nullptr, min, max);
+}
+
+double JsonReader::quantity(const std::string& key, Dimension dim, double fallback_internal, double min, double max) {
+  const std::string text = format_quantity(fallback_internal, dim);
+  return quantity_from_text(key, dim, &text, min, max);
+}
+
+double JsonReader::quantity_from_text(const std::string& key, Dimension dim, const std::string* fallback, double min,
+                                      double max) {
+  note(key, to_string(dim), fallback ? *fallback : "required",
+       range_text(min, max, -1e300, 1e300, [dim](double x) {
+         const std::string unit = format_quantity(0, dim).substr(1);  // " mm"
+         return bound_text(x) + unit;
+       }));
   const json* v = find(key);
   std::string text;
   if (!v) {
@@ -141,6 +227,7 @@ double JsonReader::quantity(const std::string& key, Dimension dim,
 template <class T, class Accept>
 std::vector<T> JsonReader::list(const std::string& key, std::optional<std::vector<T>> fallback, const char* what,
                                 const char* element_what, Accept accept) {
+  note(key, std::string(what).substr(2), fallback ? json(*fallback).dump() : "required", "");
   const json* v = find(key);
   std::vector<T> out;
   if (!v) {

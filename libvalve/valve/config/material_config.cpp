@@ -84,7 +84,9 @@ MaterialConfig parse_material(JsonReader& r) {
     r.record("fit", f.finish());
   }
   if (r.has("thickness")) m.thickness = r.quantity("thickness", Dimension::length, std::nullopt, 1e-6, 100);
+  r.document("thickness", to_string(Dimension::length), "none (the scene's default applies)");
   if (r.has("density")) m.density = r.quantity("density", Dimension::density, std::nullopt, 1e-12, 1);
+  r.document("density", to_string(Dimension::density), "none (the scene's default applies)");
   return m;
 }
 

@@ -75,6 +75,12 @@ std::vector<std::string> accepted_units(Dimension dim) {
   return out;
 }
 
+std::string format_quantity(double internal_value, Dimension dim) {
+  for (const auto& u : table(dim))
+    if (u.factor == 1.0) return format_number(internal_value) + " " + u.name;
+  return format_number(internal_value);
+}
+
 double parse_quantity(const std::string& text, Dimension dim, const std::string& where) {
   std::string units_list;
   for (const auto& u : accepted_units(dim)) units_list += (units_list.empty() ? "" : "|") + u;

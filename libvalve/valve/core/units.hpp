@@ -32,6 +32,9 @@ double parse_quantity(const std::string& text, Dimension dim, const std::string&
 /// Units accepted for a dimension, for error messages and docs.
 std::vector<std::string> accepted_units(Dimension dim);
 
+/// A value in internal units as text that parse_quantity reads back exactly: "0.65 mm".
+std::string format_quantity(double internal_value, Dimension dim);
+
 namespace units {
 constexpr double mmHg = 133.322387415e-6;  // MPa
 constexpr double kPa = 1e-3;               // MPa

@@ -110,6 +110,9 @@
 namespace valve {
 
 enum class ContactPotential { penalty, barrier };
+/// The barrier's default κ, N/mm (100 N/m): its log grows without bound near contact, so it
+/// needs less stiffness than the penalty's k to hold the same loads.
+inline constexpr double kDefaultBarrierStiffness = 0.1;
 
 struct PenaltyContactOptions {
   ContactPotential potential = ContactPotential::penalty;

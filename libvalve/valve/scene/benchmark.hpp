@@ -5,7 +5,7 @@
 // the same system.
 #include <nlohmann/json.hpp>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/mesh/tri_mesh.hpp"
 
 namespace valve {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "valve/analysis/strain_markers.hpp"
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/scene/simulation.hpp"
 
 namespace valve {

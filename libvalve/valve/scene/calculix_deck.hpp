@@ -16,7 +16,7 @@
 #include <filesystem>
 #include <string>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/mesh/tri_mesh.hpp"
 
 namespace valve {

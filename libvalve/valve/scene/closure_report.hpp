@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "valve/analysis/coaptation.hpp"
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/mechanics/mechanical_system.hpp"
 #include "valve/mesh/named_array.hpp"
 #include "valve/scene/scene_model.hpp"

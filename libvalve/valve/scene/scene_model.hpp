@@ -8,7 +8,7 @@
 
 #include "valve/analysis/annulus_targets.hpp"
 #include "valve/chordae/chordae_attachment.hpp"
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 
 namespace valve {
 

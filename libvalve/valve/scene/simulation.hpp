@@ -6,7 +6,7 @@
 #include <optional>
 #include <vector>
 
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
 #include "valve/scene/scene_model.hpp"
 #include "valve/mechanics/mechanical_system.hpp"
 #include "valve/mesh/tri_mesh.hpp"

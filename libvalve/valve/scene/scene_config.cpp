@@ -1,4 +1,8 @@
-#include "valve/config/scene_config.hpp"
+#include "valve/scene/scene_config.hpp"
+
+#include <algorithm>
+#include <map>
+#include <tuple>
 
 #include "valve/core/error.hpp"
 #include "valve/core/install_layout.hpp"
@@ -16,21 +20,22 @@ fs::path resolve(const fs::path& base_dir, const std::string& path) {
 }
 
 void parse_bdf2(JsonReader& r, Bdf2Options& o) {
-  o.truncation_tolerance = r.quantity("truncation_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
-  o.displacement_tolerance = r.quantity("displacement_tolerance", Dimension::length, std::string("1e-5 mm"), 1e-15, 10);
+  o.truncation_tolerance = r.quantity("truncation_tolerance", Dimension::length, o.truncation_tolerance, 1e-12, 100);
+  o.displacement_tolerance = r.quantity("displacement_tolerance", Dimension::length, o.displacement_tolerance, 1e-15, 10);
   o.relative_residual_tolerance = r.number("relative_residual_tolerance", o.relative_residual_tolerance, 0.0, 1.0);
   o.quiet_steps = r.integer("quiet_steps", o.quiet_steps, 1, 1000000);
-  o.settle_window = r.quantity("settle_window", Dimension::time, std::string("0 ms"), 0.0, 1e9);
-  o.settle_tolerance = r.quantity("settle_tolerance", Dimension::length, std::string("0.01 mm"), 1e-12, 100);
-  o.initial_step = r.quantity("initial_step", Dimension::time, std::string("0.001 ms"), 1e-12, 1e6);
-  o.min_step = r.quantity("min_step", Dimension::time, std::string("1e-10 ms"), 1e-20, 1e6);
-  o.max_step = r.quantity("max_step", Dimension::time, std::string("50 ms"), 1e-12, 1e9);
+  o.settle_window = r.quantity("settle_window", Dimension::time, o.settle_window, 0.0, 1e9);
+  o.settle_tolerance = r.quantity("settle_tolerance", Dimension::length, o.settle_tolerance, 1e-12, 100);
+  o.initial_step = r.quantity("initial_step", Dimension::time, o.initial_step, 1e-12, 1e6);
+  o.min_step = r.quantity("min_step", Dimension::time, o.min_step, 1e-20, 1e6);
+  o.max_step = r.quantity("max_step", Dimension::time, o.max_step, 1e-12, 1e9);
   o.min_steps = r.integer("min_steps", o.min_steps, 0, 1000000);
   o.max_steps = r.integer("max_steps", o.max_steps, 1, 2000000000);
-  o.max_time = r.quantity("max_time", Dimension::time, std::string("1e6 ms"), 1e-9, 1e15);
+  o.max_time = r.quantity("max_time", Dimension::time, o.max_time, 1e-9, 1e15);
   o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
   o.adaptive = r.boolean("adaptive", o.adaptive);
-  o.error_estimate = r.choice("error_estimate", {"step_doubling", "predictor"}, std::string("step_doubling")) ==
+  o.error_estimate = r.choice("error_estimate", {"step_doubling", "predictor"},
+                              std::string(o.error_estimate == ErrorEstimate::predictor ? "predictor" : "step_doubling")) ==
                              "predictor"
                          ? ErrorEstimate::predictor
                          : ErrorEstimate::step_doubling;
@@ -48,6 +53,7 @@ void parse_static(JsonReader& r, StaticOptions& o) {
   o.max_strain_increment = r.number("max_strain_increment", o.max_strain_increment, 0.0, 10.0);
   if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
   else r.record("trust_radius", "2.5% of the bounding-box diagonal");
+  r.document("trust_radius", to_string(Dimension::length), "2.5% of the bounding-box diagonal");
   o.min_increment = r.number("min_increment", o.min_increment, 1e-15, 1.0);
   o.max_increments = r.integer("max_increments", o.max_increments, 1, 100000000);
   o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
@@ -65,6 +71,7 @@ void parse_quasistatic(JsonReader& r, QuasistaticOptions& o) {
   o.initial_proximal_step = r.number("initial_proximal_step_ms2", o.initial_proximal_step, 1e-20, 1e20);
   if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
   else r.record("trust_radius", "5% of the bounding-box diagonal");
+  r.document("trust_radius", to_string(Dimension::length), "5% of the bounding-box diagonal");
   o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
   o.linear_solver = parse_linear_solver(r.choice("linear_solver", linear_solver_names(), std::string("auto")));
   o.iterative_tolerance = r.number("iterative_tolerance", o.iterative_tolerance, 1e-16, 1e-1);
@@ -97,18 +104,17 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   sc.model = r.choice("model", {"mass_spring", "membrane_fe"}) == "mass_spring" ? ModelKind::mass_spring
                                                                                 : ModelKind::membrane_fe;
   {
+    r.document("mesh", "path", "required");
+    r.document("material", "a preset name, a .json path or a material object", "required");
+    r.document("material.base", "a preset name or a .json path the object's keys patch (JSON merge patch)", "none");
     json used;
     sc.material = load_material(r.raw("material"), file, "material", base_dir, &used);
     r.record("material", used);
   }
-  sc.thickness = r.quantity("thickness", Dimension::length,
-                            sc.material.thickness ? std::optional<std::string>(std::to_string(*sc.material.thickness) + " mm")
-                                                  : std::optional<std::string>("0.5 mm"),
-                            1e-6, 100);
-  sc.density = r.quantity("density", Dimension::density,
-                          sc.material.density ? std::optional<std::string>(std::to_string(*sc.material.density) + " g/mm^3")
-                                              : std::optional<std::string>("1060 kg/m^3"),
-                          1e-15, 1);
+  sc.thickness = r.quantity("thickness", Dimension::length, sc.material.thickness.value_or(sc.thickness), 1e-6, 100);
+  r.document("thickness", "", "the material's thickness, else " + format_quantity(SceneConfig().thickness, Dimension::length));
+  sc.density = r.quantity("density", Dimension::density, sc.material.density.value_or(sc.density), 1e-15, 1);
+  r.document("density", "", "the material's density, else " + format_quantity(SceneConfig().density, Dimension::density));
   if (r.has("pressure")) {
     JsonReader p = r.object("pressure");
     PressureConfig pc;
@@ -120,8 +126,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   if (r.has("edge_loads")) {
     JsonReader e = r.object("edge_loads");
     EdgeLoadConfig ec;
-    ec.stress_x = e.quantity("stress_x", Dimension::pressure, std::string("0 MPa"), 0.0, 1e3);
-    ec.stress_y = e.quantity("stress_y", Dimension::pressure, std::string("0 MPa"), 0.0, 1e3);
+    ec.stress_x = e.quantity("stress_x", Dimension::pressure, ec.stress_x, 0.0, 1e3);
+    ec.stress_y = e.quantity("stress_y", Dimension::pressure, ec.stress_y, 0.0, 1e3);
     r.record("edge_loads", e.finish());
     sc.edge_loads = ec;
   }
@@ -131,7 +137,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     const std::string type = d.choice("type", {"critical", "mass_proportional"}, std::string("critical"));
     if (type == "critical") {
       dc.mode = DampingTerm::Mode::critical;
-      dc.factor = d.number("ratio", 1.0, 0.0, 1e6);
+      dc.factor = d.number("ratio", dc.factor, 0.0, 1e6);
     } else {
       dc.mode = DampingTerm::Mode::mass_proportional;
       dc.factor = d.quantity("rate", Dimension::rate, std::nullopt, 0.0, 1e12);
@@ -141,10 +147,10 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   }
   {
     JsonReader f = r.object("fixed");
-    sc.fixed.use_node_roles = f.boolean("node_roles", true);
+    sc.fixed.use_node_roles = f.boolean("node_roles", sc.fixed.use_node_roles);
     sc.fixed.nodes = f.integer_list("nodes", std::vector<int>{});
-    sc.fixed.planar = f.boolean("planar", false);
-    sc.fixed.pin_centre = f.boolean("pin_centre", false);
+    sc.fixed.planar = f.boolean("planar", sc.fixed.planar);
+    sc.fixed.pin_centre = f.boolean("pin_centre", sc.fixed.pin_centre);
     r.record("fixed", f.finish());
   }
   if (r.has("contact")) {
@@ -157,25 +163,25 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     const std::string contact_model = c.choice("model", {"penalty", "barrier", "seed"}, std::string("penalty"));
     if (contact_model == "seed") {
       ContactOptions co;
-      co.stiffness = c.quantity("stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
-      co.penetration_stiffness = c.quantity("penetration_stiffness", Dimension::stiffness, std::string("10 N/m"), 1e-12, 1e12);
-      co.zone = c.quantity("zone", Dimension::length, std::string("0.1 mm"), 1e-9, 1e3);
+      co.stiffness = c.quantity("stiffness", Dimension::stiffness, co.stiffness, 1e-12, 1e12);
+      co.penetration_stiffness = c.quantity("penetration_stiffness", Dimension::stiffness, co.penetration_stiffness, 1e-12, 1e12);
+      co.zone = c.quantity("zone", Dimension::length, co.zone, 1e-9, 1e3);
       co.between_leaflets = between;
       co.self_contact = self;
       co.normal_side_between_leaflets = c.choice("side_between_leaflets", {"normal", "memory"}, std::string("normal")) == "normal";
-      co.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
+      co.detection = c.quantity("detection", Dimension::length, co.detection, 0.0, 1e3);
       co.broad_phase = broad_phase();
-      if (co.detection != 0 && co.detection <= co.zone) c.fail("detection", "0 (automatic) or more than zone", std::to_string(co.detection) + " mm");
+      if (co.detection != 0 && co.detection <= co.zone)
+        c.fail("detection", "0 (automatic) or more than zone", format_quantity(co.detection, Dimension::length));
       sc.contact = co;
     } else {
       PenaltyContactOptions po;
       po.potential = contact_model == "barrier" ? ContactPotential::barrier : ContactPotential::penalty;
-      po.separation = c.quantity("separation", Dimension::length, std::string("0.25 mm"), 1e-6, 1e3);
+      po.separation = c.quantity("separation", Dimension::length, po.separation, 1e-6, 1e3);
       po.stiffness = c.quantity("stiffness", Dimension::stiffness,
-                                std::string(po.potential == ContactPotential::barrier ? "100 N/m" : "1000 N/m"), 1e-12, 1e12);
-      if (po.potential == ContactPotential::barrier)
-        po.offset = c.quantity("offset", Dimension::length, std::string("0 mm"), 0.0, 1e3);
-      po.detection = c.quantity("detection", Dimension::length, std::string("0 mm"), 0.0, 1e3);
+                                po.potential == ContactPotential::barrier ? kDefaultBarrierStiffness : po.stiffness, 1e-12, 1e12);
+      if (po.potential == ContactPotential::barrier) po.offset = c.quantity("offset", Dimension::length, po.offset, 0.0, 1e3);
+      po.detection = c.quantity("detection", Dimension::length, po.detection, 0.0, 1e3);
       po.edge_contact = c.boolean("edges", true);
       po.interior_edges = c.boolean("interior_edges", false);
       if (po.interior_edges && !po.edge_contact) c.fail("interior_edges", "false when edges is false", "true");
@@ -183,7 +189,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       po.self_contact = self;
       po.broad_phase = broad_phase();
       if (po.detection != 0 && po.detection <= po.separation + po.offset)
-        c.fail("detection", "0 (automatic) or more than separation plus offset", std::to_string(po.detection) + " mm");
+        c.fail("detection", "0 (automatic) or more than separation plus offset", format_quantity(po.detection, Dimension::length));
       sc.penalty_contact = po;
     }
     r.record("contact", c.finish());
@@ -202,12 +208,14 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     pr.string("name", std::string(""));
     pr.string("note", std::string(""));
     pr.finish();
-    ac.wall_thickness = a.quantity("wall_thickness", Dimension::length, std::to_string(t_default) + " mm", 1e-6, 100);
-    ac.youngs_modulus = a.quantity("youngs_modulus", Dimension::pressure, std::to_string(e_default) + " MPa", 1e-9, 1e6);
-    ac.unloaded_diameter_ratio = a.number("unloaded_diameter_ratio", 1.15, 0.5, 2.0);
-    const std::optional<std::string> p_default =
-        sc.pressure ? std::optional<std::string>(std::to_string(sc.pressure->value) + " MPa") : std::nullopt;
-    ac.pressure = a.quantity("pressure", Dimension::pressure, p_default, 0.0, 1e3);
+    ac.wall_thickness = a.quantity("wall_thickness", Dimension::length, t_default, 1e-6, 100);
+    a.document("wall_thickness", "", "the preset's");
+    ac.youngs_modulus = a.quantity("youngs_modulus", Dimension::pressure, e_default, 1e-9, 1e6);
+    a.document("youngs_modulus", "", "the preset's");
+    ac.unloaded_diameter_ratio = a.number("unloaded_diameter_ratio", ac.unloaded_diameter_ratio, 0.5, 2.0);
+    ac.pressure = sc.pressure ? a.quantity("pressure", Dimension::pressure, sc.pressure->value, 0.0, 1e3)
+                              : a.quantity("pressure", Dimension::pressure, std::nullopt, 0.0, 1e3);
+    a.document("pressure", "", "the scene's pressure");
     const auto point = a.number_list("axis_point", std::vector<double>{0, 0, 0});
     const auto dir = a.number_list("axis_direction", std::vector<double>{0, 0, 1});
     if (point.size() != 3) a.fail("axis_point", "[x, y, z] in mm", std::to_string(point.size()) + " numbers");
@@ -222,7 +230,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     JsonReader b = r.object("bending");
     BendingConfig bc;
     bc.modulus = b.quantity("modulus", Dimension::pressure, std::nullopt, 0.0, 1e6);
-    bc.thickness = b.quantity("thickness", Dimension::length, std::to_string(sc.thickness) + " mm", 1e-6, 100);
+    bc.thickness = b.quantity("thickness", Dimension::length, sc.thickness, 1e-6, 100);
+    b.document("thickness", "", "the scene's thickness");
     r.record("bending", b.finish());
     sc.bending = bc;
   }
@@ -231,28 +240,29 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     CoaptationOptions& co = sc.coaptation;
     co.gap = c.choice("gap", {"ray", "nearest"}, std::string(to_string(co.gap))) == "nearest" ? GapMeasure::nearest
                                                                                              : GapMeasure::ray;
-    co.threshold_mm = c.quantity("threshold", Dimension::length, std::to_string(co.threshold_mm) + " mm", 1e-6, 100);
-    co.free_edge_offset_mm =
-        c.quantity("free_edge_offset", Dimension::length, std::to_string(co.free_edge_offset_mm) + " mm", 0.0, 1e3);
+    co.threshold_mm = c.quantity("threshold", Dimension::length, co.threshold_mm, 1e-6, 100);
+    co.free_edge_offset_mm = c.quantity("free_edge_offset", Dimension::length, co.free_edge_offset_mm, 0.0, 1e3);
     co.commissure_margin = c.number("commissure_margin", co.commissure_margin, 0.0, 0.499);
-    co.closed_min_height_mm =
-        c.quantity("closed_min_height", Dimension::length, std::to_string(co.closed_min_height_mm) + " mm", 1e-6, 1e3);
+    co.closed_min_height_mm = c.quantity("closed_min_height", Dimension::length, co.closed_min_height_mm, 1e-6, 1e3);
     r.record("coaptation", c.finish());
   }
   if (r.has("chordae")) {
     JsonReader c = r.object("chordae");
     ChordaeConfig cc;
+    c.document("file", "path", "required");
     cc.file = resolve(base_dir, c.string("file"));
     cc.law = c.choice("law", {"file", "linear"}, std::string("file")) == "file" ? ChordaeConfig::Law::file
                                                                                 : ChordaeConfig::Law::linear;
-    cc.youngs_modulus = c.quantity("youngs_modulus", Dimension::pressure, std::string("40 MPa"), 1e-6, 1e6);
+    cc.youngs_modulus = c.quantity("youngs_modulus", Dimension::pressure, cc.youngs_modulus, 1e-6, 1e6);
     if (c.has("diameter")) cc.diameter = c.quantity("diameter", Dimension::length, std::nullopt, 0.0, 10);
     else c.record("diameter", "each chord's area_mm2, else the chordae file's diameter_mm");
-    cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, std::string("1 mm"), 0.0, 100);
-    cc.rest_length_scale = c.number("rest_length_scale", 1.0, 0.2, 5.0);
-    cc.types = c.string_list("types", std::vector<std::string>{"primary", "secondary", "strut"});
+    c.document("diameter", to_string(Dimension::length), "each chord's area_mm2, else the chordae file's diameter_mm");
+    cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, cc.snap_tolerance, 0.0, 100);
+    cc.rest_length_scale = c.number("rest_length_scale", cc.rest_length_scale, 0.2, 5.0);
+    cc.types = c.string_list("types", cc.types);
     for (const auto& t : cc.types)
       if (t != "primary" && t != "secondary" && t != "strut") c.fail("types", "a list of primary, secondary, strut", t);
+    c.document("papillary_tips", "list of [x, y, z] in mm", "as in the chordae file");
     if (c.has("papillary_tips")) {
       const json& tips = c.raw("papillary_tips");
       bool ok = tips.is_array();
@@ -268,8 +278,9 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   if (r.has("annulus_motion")) {
     JsonReader a = r.object("annulus_motion");
     AnnulusMotionConfig ac;
+    a.document("closed_mesh", "path", "required");
     ac.closed_mesh = resolve(base_dir, a.string("closed_mesh"));
-    ac.register_rigidly = a.boolean("register", true);
+    ac.register_rigidly = a.boolean("register", ac.register_rigidly);
     ac.correspondence = a.choice("correspondence", {"arc_length", "nodes"}, std::string("arc_length")) == "nodes"
                             ? AnnulusMotionConfig::Correspondence::nodes
                             : AnnulusMotionConfig::Correspondence::arc_length;
@@ -282,6 +293,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     json from_file;
     std::string list_file = file;
     fs::path list_dir = base_dir;
+    r.document("leaflet_materials", "list of {leaflets, material, thickness}, or a .json path holding one", "none");
     const json* list_ptr = &r.raw("leaflet_materials");
     if (list_ptr->is_string()) {
       const fs::path path = resolve(base_dir, list_ptr->get<std::string>());
@@ -307,10 +319,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       if (!e.has("material")) e.fail("material", "a preset name or a material object", "nothing");
       lm.material = load_material(e.raw("material"), list_file, key + ".material", list_dir, &used_material);
       e.record("material", used_material);
-      lm.thickness = e.quantity("thickness", Dimension::length,
-                                lm.material.thickness ? std::optional<std::string>(format_number(*lm.material.thickness) + " mm")
-                                                      : std::optional<std::string>(format_number(sc.thickness) + " mm"),
-                                1e-6, 100);
+      lm.thickness = e.quantity("thickness", Dimension::length, lm.material.thickness.value_or(sc.thickness), 1e-6, 100);
+      e.document("thickness", "", "the material's thickness, else the scene's");
       used_list.push_back(e.finish());
       sc.leaflet_materials.push_back(std::move(lm));
     }
@@ -357,6 +367,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     s.record("quasistatic", q.finish());
     r.record("solver", s.finish());
   }
+  r.document("monitor", "\"all\", \"free_edge_middle\", a node index or a point [x, y, z] in mm", "\"all\"");
   if (r.has("monitor")) {
     const json& m = r.raw("monitor");
     if (m.is_string() && m == "all") {
@@ -378,20 +389,117 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   if (r.has("strain_markers")) {
     JsonReader m = r.object("strain_markers");
     StrainMarkerConfig mc;
-    mc.side = m.quantity("side", Dimension::length, std::string("1.5 mm"), 1e-6, 1e3);
+    mc.side = m.quantity("side", Dimension::length, mc.side, 1e-6, 1e3);
     mc.seed_rule = m.choice("convergence", {"seed", "solver"}, std::string("seed")) == "seed";
-    mc.rule_fraction = m.number("fraction", 0.02, 1e-12, 1.0);
+    mc.rule_fraction = m.number("fraction", mc.rule_fraction, 1e-12, 1.0);
     r.record("strain_markers", m.finish());
     sc.strain_markers = mc;
   }
   {
     JsonReader o = r.object("output");
-    sc.time_series = o.boolean("time_series", false);
+    sc.time_series = o.boolean("time_series", sc.time_series);
     sc.time_series_every = o.integer("every", sc.time_series_every, 1, 1000000);
     r.record("output", o.finish());
   }
   sc.used = r.finish();
   return sc;
+}
+
+namespace {
+
+// A scene declaring every block, with the required keys given, for the key table.
+json every_block_scene() {
+  const json fung = {{"law", "fung"}, {"c", "1 kPa"}, {"A1", 1.0}, {"A2", 1.0}};
+  return {{"mesh", "leaflets.vtp"},
+          {"model", "membrane_fe"},
+          {"material", fung},
+          {"pressure", {{"value", "80 mmHg"}}},
+          {"edge_loads", json::object()},
+          {"damping", json::object()},
+          {"fixed", json::object()},
+          {"contact", json::object()},
+          {"aortic_root", json::object()},
+          {"bending", {{"modulus", "1 MPa"}}},
+          {"coaptation", json::object()},
+          {"chordae", {{"file", "chordae.json"}}},
+          {"annulus_motion", {{"closed_mesh", "closed.vtp"}}},
+          {"leaflet_materials", json::array({{{"leaflets", {0}}, {"material", fung}}})},
+          {"load", json::object()},
+          {"solver", json::object()},
+          {"monitor", "all"},
+          {"strain_markers", json::object()},
+          {"output", json::object()}};
+}
+
+std::vector<KeySpec> keys_read(const json& scene) {
+  const std::string file = "(key table)";
+  KeySpecRecorder recorder(file);
+  parse_scene(scene, file, fs::path("."));
+  std::vector<KeySpec> keys;
+  for (KeySpec k : recorder.keys()) {
+    // A leaflet's material has the keys of `material`; its list's entries are keyed "[]".
+    if (k.path.rfind("leaflet_materials[0].material.", 0) == 0) continue;
+    const auto index = k.path.find("[0]");
+    if (index != std::string::npos) k.path.replace(index, 3, "[]");
+    keys.push_back(k);
+  }
+  return keys;
+}
+
+bool same_key(const KeySpec& a, const KeySpec& b) {
+  return a.path == b.path && a.type == b.type && a.default_value == b.default_value && a.range == b.range;
+}
+
+}  // namespace
+
+std::vector<SceneKeyRow> scene_key_table() {
+  const json base = every_block_scene();
+  std::vector<SceneKeyRow> rows;
+  for (const KeySpec& k : keys_read(base)) rows.push_back({k, ""});
+  // Each choice that brings keys or defaults of its own, as the block it replaces.
+  const std::vector<std::tuple<std::string, std::string, json>> variants{
+      {"material", "law=hgo", {{"law", "hgo"}, {"C10", "1 kPa"}, {"C01", 1.0}}},
+      {"material", "law=iso_exponential", {{"law", "iso_exponential"}, {"C0", "1 kPa"}}},
+      {"material", "law=bilinear",
+       {{"law", "bilinear"},
+        {"bilinear",
+         {{"fiber", {{"m1", "1 kPa"}, {"m2", "10 kPa"}, {"lambda_star", 1.1}}},
+          {"cross", {{"m1", "1 kPa"}, {"m2", "10 kPa"}, {"lambda_star", 1.1}}}}}}},
+      {"contact", "model=barrier", {{"model", "barrier"}}},
+      {"contact", "model=seed", {{"model", "seed"}}},
+      {"damping", "type=mass_proportional", {{"type", "mass_proportional"}, {"rate", "1 1/ms"}}},
+  };
+  for (const auto& [block, choice, replacement] : variants) {
+    json scene = base;
+    scene[block] = replacement;
+    for (const KeySpec& k : keys_read(scene)) {
+      if (k.path != block && k.path.rfind(block + ".", 0) != 0) continue;
+      const bool in_base = std::any_of(rows.begin(), rows.end(), [&](const SceneKeyRow& r) {
+        return r.applies_when.empty() && same_key(r.key, k);
+      });
+      if (!in_base) rows.push_back({k, block + "." + choice});
+    }
+  }
+  // Keys of one block together, in the order the parser reads them; a block's variants after it.
+  const auto block_of = [](const SceneKeyRow& r) { return r.key.path.substr(0, r.key.path.find_first_of(".[")); };
+  std::map<std::string, std::size_t> block_rank;
+  for (std::size_t i = 0; i < rows.size(); ++i) block_rank.emplace(block_of(rows[i]), i);
+  std::stable_sort(rows.begin(), rows.end(), [&](const SceneKeyRow& a, const SceneKeyRow& b) {
+    return block_rank.at(block_of(a)) < block_rank.at(block_of(b));
+  });
+  return rows;
+}
+
+std::string scene_key_table_markdown() {
+  auto cell = [](std::string text) {
+    for (std::size_t at = 0; (at = text.find('|', at)) != std::string::npos; at += 2) text.replace(at, 1, "\\|");
+    return text;
+  };
+  std::string md = "| key | type | default | range | applies when |\n| --- | --- | --- | --- | --- |\n";
+  for (const SceneKeyRow& row : scene_key_table())
+    md += "| `" + row.key.path + "` | " + cell(row.key.type) + " | " + cell(row.key.default_value) + " | " +
+          cell(row.key.range) + " | " + (row.applies_when.empty() ? "" : "`" + row.applies_when + "`") + " |\n";
+  return md;
 }
 
 SceneConfig load_scene(const fs::path& file) {

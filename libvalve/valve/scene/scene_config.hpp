@@ -3,7 +3,7 @@
 // pressure, edge loads, damping, fixed nodes, contact, aortic root, per-leaflet materials,
 // load increments, solver, monitor, output).
 // Everything is validated and defaulted here, in one place; `used` records the values
-// after defaults for the stage summary. docs/scene.md lists the keys.
+// after defaults for the stage summary. scene_key_table() lists the keys for docs/scene.md.
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -151,5 +151,18 @@ SceneConfig load_scene(const std::filesystem::path& file);
 SceneConfig parse_scene(const json& j, const std::string& file, const std::filesystem::path& base_dir);
 
 std::string to_string(ModelKind m);
+
+/// A row of the scene key table: a key as parse_scene reads it (type, default, range), and
+/// the setting under which it has that meaning (empty: always).
+struct SceneKeyRow {
+  KeySpec key;
+  std::string applies_when;
+};
+/// Every key parse_scene reads, recorded while it parses scenes that declare every block:
+/// once as a whole, then once per choice that brings keys or defaults of its own (each
+/// material law, contact model, damping type).
+std::vector<SceneKeyRow> scene_key_table();
+/// The table as markdown (`valve-simulate --scene-keys`; docs/scene.md holds it).
+std::string scene_key_table_markdown();
 
 }  // namespace valve

@@ -1,0 +1,63 @@
+#include <catch2/catch.hpp>
+#include <set>
+
+#include "valve/core/units.hpp"
+#include "valve/scene/scene_config.hpp"
+
+using namespace valve;
+
+namespace {
+const SceneKeyRow* find_row(const std::vector<SceneKeyRow>& rows, const std::string& path, const std::string& when = "") {
+  for (const auto& r : rows)
+    if (r.key.path == path && r.applies_when == when) return &r;
+  return nullptr;
+}
+}  // namespace
+
+TEST_CASE("the scene key table lists every block's keys with the defaults the parser applies", "[scene][config]") {
+  const auto rows = scene_key_table();
+  std::set<std::string> blocks;
+  for (const auto& r : rows) blocks.insert(r.key.path.substr(0, r.key.path.find_first_of(".[")));
+  for (const char* block : {"mesh", "model", "material", "thickness", "pressure", "edge_loads", "damping", "fixed",
+                            "contact", "aortic_root", "bending", "coaptation", "chordae", "annulus_motion",
+                            "leaflet_materials", "load", "solver", "monitor", "strain_markers", "output"})
+    CHECK(blocks.count(block) == 1);
+
+  // Defaults as the option structs hold them, in the internal units.
+  const auto* max_step = find_row(rows, "solver.bdf2.max_step");
+  REQUIRE(max_step);
+  CHECK(parse_quantity(max_step->key.default_value, Dimension::time, "") == Bdf2Options().max_step);
+  CHECK(find_row(rows, "output.every")->key.default_value == std::to_string(SceneConfig().time_series_every));
+  CHECK(find_row(rows, "pressure.value")->key.default_value == "required");
+
+  // A choice that brings its own keys or defaults gets rows of its own.
+  const auto* penalty = find_row(rows, "contact.stiffness");
+  const auto* barrier = find_row(rows, "contact.stiffness", "contact.model=barrier");
+  const auto* seed = find_row(rows, "contact.stiffness", "contact.model=seed");
+  REQUIRE(penalty);
+  REQUIRE(barrier);
+  REQUIRE(seed);
+  CHECK(parse_quantity(penalty->key.default_value, Dimension::stiffness, "") == PenaltyContactOptions().stiffness);
+  CHECK(parse_quantity(barrier->key.default_value, Dimension::stiffness, "") == kDefaultBarrierStiffness);
+  CHECK(parse_quantity(seed->key.default_value, Dimension::stiffness, "") == ContactOptions().stiffness);
+  CHECK(find_row(rows, "material.C10", "material.law=hgo"));
+  CHECK_FALSE(find_row(rows, "material.C10"));
+  CHECK(find_row(rows, "damping.rate", "damping.type=mass_proportional"));
+  CHECK(find_row(rows, "leaflet_materials[].leaflets"));
+
+  // Each path appears once per setting.
+  std::set<std::string> seen;
+  for (const auto& r : rows) CHECK(seen.insert(r.key.path + " | " + r.applies_when).second);
+}
+
+TEST_CASE("scene defaults taken from other keys are recorded in the internal unit, not rounded", "[scene][config]") {
+  const json j = {{"mesh", "m.vtp"},
+                  {"model", "membrane_fe"},
+                  {"material", {{"c", "1 kPa"}, {"A1", 1.0}, {"A2", 1.0}, {"thickness", "0.123456789 mm"}}},
+                  {"bending", {{"modulus", "1 MPa"}}}};
+  const SceneConfig sc = parse_scene(j, "s.json", ".");
+  CHECK(sc.thickness == 0.123456789);
+  CHECK(sc.bending->thickness == 0.123456789);
+  CHECK(sc.used["thickness"] == "0.123456789 mm");
+  CHECK(sc.used["bending"]["thickness"] == "0.123456789 mm");
+}
