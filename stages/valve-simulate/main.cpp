@@ -16,7 +16,6 @@
 #include <filesystem>
 #include <memory>
 
-#include "valve/chordae/slicer_markups.hpp"
 #include "valve/scene/scene_config.hpp"
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
@@ -24,8 +23,8 @@
 #include "valve/core/progress.hpp"
 #include "valve/io/chordae_io.hpp"
 #include "valve/io/mesh_io.hpp"
-#include "valve/mesh/validate.hpp"
 #include "valve/scene/biaxial_protocol.hpp"
+#include "valve/scene/closure_files.hpp"
 #include "valve/scene/closure_report.hpp"
 #include "valve/scene/simulation.hpp"
 #include "stage_usage.hpp"
@@ -49,33 +48,14 @@ int main(int argc, char** argv) {
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
     const bool quiet = cl.has("quiet");
 
-    std::vector<NamedArray> mesh_arrays;
-    const TriMesh mesh = read_mesh(scene.mesh_path, &mesh_arrays);
-    validate_mesh(mesh, scene.mesh_path.string());
-    // Every leaflet law here is anisotropic, and without the array each triangle's fiber
-    // would silently follow its first edge (TriMesh::fill_defaults): a random field.
-    if (std::none_of(mesh_arrays.begin(), mesh_arrays.end(),
-                     [](const NamedArray& a) { return a.per_cell && a.name == "FiberDirection"; }))
-      throw_input_error(scene.mesh_path.string(), "FiberDirection", "a cell array of fiber directions (the leaflet laws are anisotropic)", "none");
+    const TriMesh mesh = read_leaflet_mesh(scene.mesh_path);
     std::optional<TriMesh> closed;
     if (scene.annulus_motion) closed = read_mesh(scene.annulus_motion->closed_mesh);
     const SceneModel model = prepare_scene_model(scene, mesh, closed ? &*closed : nullptr);
     auto system = build_system(scene, model);
 
     StageSummary summary("simulate", out);
-    // This run's outputs replace an earlier run's: none of those may stay beside this run's
-    // summary, whatever this run ends with (a failed run writes no mesh).
-    auto remove_outputs = [&out] {
-      std::error_code ec;
-      for (const char* name : {"closed.sim.vtp", "closed.sim.pvd", "closed.chordae.vtp", "coaptation_columns.csv",
-                               "closed.landmarks.mrk.json"})
-        fs::remove(out / name, ec);
-      for (const auto& format : kMeshCopyFormats) fs::remove(out / ("closed.sim." + format), ec);
-      if (fs::is_directory(out / "series", ec))
-        for (const auto& e : fs::directory_iterator(out / "series", ec))
-          if (e.path().filename().string().rfind("step_", 0) == 0 && e.path().extension() == ".vtp") fs::remove(e.path(), ec);
-    };
-    remove_outputs();
+    remove_closure_files(out);
     summary.add_input("scene", scene_file);
     summary.add_input("mesh", scene.mesh_path);
     if (scene.chordae) summary.add_input("chordae", scene.chordae->file);
@@ -83,20 +63,11 @@ int main(int argc, char** argv) {
     summary.parameters() = scene.used;
 
     Progress progress("valve-simulate", quiet);
-    std::vector<std::string> series_files;
-    std::vector<double> series_times;
-    long accepted = 0;
+    ClosureTimeSeries series(out, mesh, scene.time_series, scene.time_series_every);
     SimulationHooks hooks;
     hooks.on_step = [&](const VecX& x, double t) {
-      ++accepted;
-      progress.update(-1, "t = " + std::to_string(t) + " ms, " + std::to_string(accepted) + " steps");
-      if (scene.time_series && accepted % scene.time_series_every == 0) {
-        const std::string name = "series/step_" + std::to_string(accepted) + ".vtp";
-        const MatX3 pos = unflatten(model.leaflet_state(x));
-        write_mesh(out / name, mesh, &pos);
-        series_files.push_back(name);
-        series_times.push_back(t);
-      }
+      series.step(unflatten(model.leaflet_state(x)), t);
+      progress.update(-1, "t = " + std::to_string(t) + " ms, " + std::to_string(series.steps()) + " steps");
     };
     std::unique_ptr<BiaxialProtocol> biaxial;
     if (scene.strain_markers) {
@@ -114,7 +85,7 @@ int main(int argc, char** argv) {
     if (run.chordae && full_state.allFinite())
       write_chordae_vtp(out / "closed.chordae.vtp", *model.chordae, &run.chordae->attachment_positions, &run.chordae->tension);
     if (res.summary.status == SolverStatus::failed || !res.x.allFinite()) {
-      remove_outputs();  // this run's chordae and time series
+      remove_closure_files(out);  // this run's chordae and time series
       summary.set_status("failed", res.summary.reason);
       summary.write();
       std::fprintf(stderr, "valve-simulate: failed: %s\n", res.summary.reason.c_str());
@@ -123,13 +94,8 @@ int main(int argc, char** argv) {
 
     const ClosedValveAnalysis analysis = analyze_closed_valve(scene, mesh, res.x);
     if (analysis.coaptation) summary.metrics()["coaptation"] = coaptation_metrics(*analysis.coaptation, analysis.coaptation_options);
-    const MatX3 pos = unflatten(res.x);
-    write_mesh(out / "closed.sim.vtp", mesh, &pos, analysis.arrays);
-    write_mesh_copies(out / "closed.sim.vtp", mesh_copies, mesh, &pos, analysis.arrays);
-    if (analysis.coaptation) write_file_atomic(out / "coaptation_columns.csv", coaptation_columns_csv(*analysis.coaptation));
-    const std::vector<int>* coapting = analysis.coaptation ? &analysis.coaptation->coapting : nullptr;
-    write_slicer_curves(out / "closed.landmarks.mrk.json", valve_landmark_curves(mesh, res.x, coapting));
-    if (scene.time_series) write_pvd(out / "closed.sim.pvd", series_files, series_times);
+    write_closed_valve_files(out, mesh, res.x, analysis, mesh_copies);
+    series.finish();
     summary.metrics()["max_displacement_mm"] = analysis.max_displacement_mm;
     if (!analysis.leaflets.empty()) summary.metrics()["leaflets"] = analysis.leaflets;
     const bool ok = res.summary.status == SolverStatus::ok;
