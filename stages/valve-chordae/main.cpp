@@ -17,14 +17,13 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "valve/chordae/chordae_attachment.hpp"
+#include "valve/chordae/chordae_placement.hpp"
 #include "valve/chordae/slicer_markups.hpp"
 #include "valve/config/json_reader.hpp"
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/stage_arguments.hpp"
-#include "valve/chordae/chordae_extraction.hpp"
 #include "valve/io/chordae_io.hpp"
 #include "valve/io/image_io.hpp"
 #include "valve/io/mesh_io.hpp"
@@ -37,10 +36,7 @@ int main(int argc, char** argv) {
   return run_stage("valve-chordae", kStageUsage, [&] {
     const std::vector<std::string> keys{"mesh", "from", "markups", "labels", "snap-tolerance", "merge-distance",
                                         "insertion-distance", "min-spur", "scale", "name"};
-    CommandLine cl(argc, argv,
-                   {"out", "config", "mesh", "from", "markups", "labels", "snap-tolerance", "merge-distance", "insertion-distance",
-                    "min-spur", "scale", "name"},
-                   {"quiet"});
+    CommandLine cl(argc, argv, stage_flags({"out", "config"}, keys), {"quiet"});
     const fs::path out = cl.require("out");
     StageArguments args(cl, keys);
     const fs::path mesh_file = args.text("mesh", "");
@@ -55,50 +51,27 @@ int main(int argc, char** argv) {
     ChordaeExtractionOptions extraction;
     extraction.insertion_distance_mm = args.length_mm("insertion-distance", extraction.insertion_distance_mm, 0, 20);
     extraction.min_spur_mm = args.length_mm("min-spur", extraction.min_spur_mm, 0, 20);
-    const double tolerance = args.length_mm("snap-tolerance", 1.5, 0, 100);
+    ChordaePlacementOptions placement;
+    placement.snap_tolerance_mm = args.length_mm("snap-tolerance", placement.snap_tolerance_mm, 0, 100);
     const double merge = args.length_mm("merge-distance", 0.3, 0, 10);
     const std::string name = args.text("name", "chordae");
 
     const TriMesh mesh = read_mesh(mesh_file);
     ChordaeNetwork net;
     ChordaeExtractionSummary extracted;
-    std::string source;
+    const std::string source = !from.empty() ? from : !labels.empty() ? labels : markups.front();
     if (!from.empty()) {
       net = read_chordae_json(load_json_file(from), from);
       for (ChordPoint& p : net.points) p.mesh_node = -1;  // snapped to this mesh, whatever they were
-      source = from;
     } else if (!labels.empty()) {
       net = chordae_from_labels(read_label_map(labels), extraction, labels, &extracted);
-      source = labels;
     } else {
-      std::vector<fs::path> files(markups.begin(), markups.end());
-      net = read_slicer_curves(files, merge);
-      source = markups.front();
+      net = read_slicer_curves(std::vector<fs::path>(markups.begin(), markups.end()), merge);
     }
-    // Snap first (positions become mesh nodes), then the checks of a chordae.json.
-    snap_insertions(net, mesh.points, tolerance, source);
-    if (from.empty()) classify_by_insertion(net, mesh);
-    net = read_chordae_json(to_json(net), source);
-    for (const std::string& s : cl.get_all("scale")) {
-      const auto eq = s.find('=');
-      char* end = nullptr;
-      const long index = eq == std::string::npos ? -1 : std::strtol(s.c_str(), &end, 10);
-      const double factor = eq == std::string::npos ? 0 : std::strtod(s.c_str() + eq + 1, nullptr);
-      if (eq == std::string::npos || index < 0 || index >= static_cast<long>(net.segments.size()) || !(factor >= 0.2 && factor <= 5))
-        throw InputError("valve-chordae: --scale: expected SEGMENT=FACTOR with SEGMENT in [0, " + std::to_string(net.segments.size() - 1) +
-                         "] and FACTOR in [0.2, 5], found \"" + s + "\"");
-      net.segments[index].scale = factor;
-    }
-    // Rest lengths are fixed now, from the open geometry, so that later edits of the
-    // positions (closed-state papillary tips) do not change them.
-    for (std::size_t s = 0; s < net.segments.size(); ++s)
-      net.segments[s].rest_length = net.unscaled_rest_length(static_cast<int>(s));
+    placement.type_by_insertion = from.empty();
+    placement.segment_scales = cl.get_all("scale");
+    net = place_chordae(std::move(net), mesh, placement, source);
 
-    double total = 0, longest = 0;
-    for (std::size_t s = 0; s < net.segments.size(); ++s) {
-      total += net.rest_length(static_cast<int>(s));
-      longest = std::max(longest, net.rest_length(static_cast<int>(s)));
-    }
     fs::create_directories(out);
     write_file_atomic(out / (name + ".json"), to_json(net).dump(1) + "\n");
     write_chordae_vtp(out / (name + ".vtp"), net);
@@ -108,23 +81,8 @@ int main(int argc, char** argv) {
     for (std::size_t k = 1; k < markups.size(); ++k) summary.add_input("markups_" + std::to_string(k), markups[k]);
     summary.parameters() = args.used();
     summary.parameters()["scale"] = cl.get_all("scale");
-    summary.metrics() = {{"segments", net.segments.size()},
-                         {"primary", net.count(ChordType::primary)},
-                         {"secondary", net.count(ChordType::secondary)},
-                         {"strut", net.count(ChordType::strut)},
-                         {"papillary_tips", net.count(ChordPointKind::papillary_tip)},
-                         {"branch_points", net.count(ChordPointKind::branch)},
-                         {"insertions", net.count(ChordPointKind::insertion)},
-                         {"total_rest_length_mm", total},
-                         {"longest_segment_mm", longest}};
-    if (!labels.empty())
-      summary.metrics()["extraction"] = {{"chordae_voxels", extracted.chordae_voxels},
-                                         {"skeleton_voxels", extracted.skeleton_voxels},
-                                         {"junctions", extracted.junctions},
-                                         {"spurs_removed", extracted.spurs_removed},
-                                         {"components", extracted.components},
-                                         {"components_dropped", extracted.components_dropped},
-                                         {"tips_on_other_tissue", extracted.tips_on_other_tissue}};
+    summary.metrics() = chordae_metrics(net);
+    if (!labels.empty()) summary.metrics()["extraction"] = to_json(extracted);
     summary.write();
     if (!cl.has("quiet"))
       std::printf("valve-chordae: %zu segments (%d primary, %d secondary, %d strut), %d insertions on %s -> %s\n",

@@ -13,46 +13,25 @@
 // node to a ground-truth surface. --write-membrane also writes the extracted face before
 // remeshing (membrane.vtp), to see what the remesher was given. NAME.landmarks.mrk.json holds
 // the annulus ring and the free edges as 3D Slicer markup curves. Writes remesh.summary.json with the quality table.
-#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 
-#include "valve/analysis/distance_stats.hpp"
-#include "valve/analysis/surface_distance.hpp"
 #include "valve/chordae/slicer_markups.hpp"
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
 #include "valve/io/mesh_io.hpp"
-#include "valve/mesh/quality.hpp"
-#include "valve/mesh/subdivide.hpp"
-#include "valve/remesh/membrane_extraction.hpp"
-#include "valve/remesh/remesher.hpp"
+#include "valve/remesh/remesh_report.hpp"
 #include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
 
-namespace {
-nlohmann::json shape_json(const MeshShapeReport& r) {
-  return {{"nodes", r.nodes},
-          {"triangles", r.triangles},
-          {"quality_mean", r.quality.mean},
-          {"quality_min", r.quality.min},
-          {"quality_min_away_from_boundary", r.quality_min_away_from_boundary},
-          {"quality_below_0_6", r.quality.below_0_6},
-          {"mean_interior_valence", r.mean_interior_valence},
-          {"boundary_loops", r.boundary_loops},
-          {"manifold", r.manifold()}};
-}
-}  // namespace
-
 int main(int argc, char** argv) {
   return run_stage("valve-remesh", kStageUsage, [&] {
     const std::vector<std::string> keys = {"name", "triangles", "method", "atrial_direction", "viewpoint_height", "thickness", "subdivide", "reference", "annulus_from", "annulus_tolerance"};
-    CommandLine cl(argc, argv, {"out", "config", "name", "triangles", "method", "atrial-direction", "viewpoint-height", "thickness", "subdivide", "reference", "annulus-from", "annulus-tolerance", "mesh-copies"},
-                   {"no-offset", "input-is-membrane", "write-membrane", "quiet"});
+    CommandLine cl(argc, argv, stage_flags({"out", "config"}, keys, {"mesh-copies"}), {"no-offset", "input-is-membrane", "write-membrane", "quiet"});
     const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     if (cl.positional().size() != 1)
       throw InputError("valve-remesh: SURFACE: expected one surface mesh, found " + std::to_string(cl.positional().size()) + " arguments");
@@ -84,15 +63,8 @@ int main(int argc, char** argv) {
     std::vector<std::pair<Vec3, Vec3>> annulus_landmark;
     if (!annulus_from.empty()) annulus_landmark = annulus_segments(read_mesh(annulus_from), annulus_from);
     MembraneSummary ms;
-    TriMesh membrane;
-    if (membrane_input) {
-      membrane = surface;
-      ms.direction_estimated = !mo.atrial_direction;
-      ms.atrial_direction = mo.atrial_direction ? mo.atrial_direction->normalized() : estimate_atrial_direction(surface.points);
-      ms.faces_in = ms.faces_kept = surface.num_triangles();
-    } else {
-      membrane = extract_atrial_membrane(surface, mo, &ms);
-    }
+    const TriMesh membrane = membrane_input ? surface : extract_atrial_membrane(surface, mo, &ms);
+    if (membrane_input) ms = describe_given_membrane(surface, mo.atrial_direction);
     RemeshSummary rs;
     TriMesh mesh = remesh_membrane(membrane, ro, &rs);
     const int loops = annulus_landmark.empty() ? mark_annulus_and_free_edge(mesh, ms.atrial_direction)
@@ -106,67 +78,24 @@ int main(int argc, char** argv) {
     summary.parameters() = args.used();
     summary.parameters()["offset"] = offset;
     summary.parameters()["input_is_membrane"] = membrane_input;
-    nlohmann::json& m = summary.metrics();
-    m["atrial_direction"] = {ms.atrial_direction.x(), ms.atrial_direction.y(), ms.atrial_direction.z()};
-    m["atrial_direction_estimated"] = ms.direction_estimated;
-    m["extraction"] = {{"faces_in", ms.faces_in}, {"faces_kept", ms.faces_kept}, {"pieces_kept", ms.pieces_kept},
-                       {"pieces_dropped", ms.pieces_dropped}, {"area_mm2", ms.area_mm2}};
-    m["remesh"] = {{"target_edge_length_mm", rs.target_edge_length}, {"attempts", rs.attempts}, {"holes_filled", rs.holes_filled}, {"border_repairs", rs.border_repairs}, {"border_vertices_snapped", rs.border_snapped}, {"flap_triangles_cut", rs.flaps_cut}};
-    int annulus_nodes = 0, free_edge_nodes = 0;
-    for (BoundaryType b : mesh.boundary) annulus_nodes += b == BoundaryType::attached, free_edge_nodes += b == BoundaryType::free_edge;
-    m["boundary_loops"] = loops;
-    m["annulus_nodes"] = annulus_nodes;
-    m["free_edge_nodes"] = free_edge_nodes;
-
-    nlohmann::json levels = nlohmann::json::array();
-    TriMesh level = mesh;
-    for (int s = 0; s <= subdivide; ++s) {
-      if (s > 0) level = subdivide_midpoint(level);
-      const std::string file = name + (s == 0 ? "" : s == 1 ? "_x4" : "_x16") + ".vtp";
-      const auto q = triangle_qualities(level.points, level.triangles);
-      Eigen::MatrixXd quality(q.size(), 1);
-      for (std::size_t t = 0; t < q.size(); ++t) quality(t, 0) = q[t];
-      std::vector<NamedArray> extra{{"Quality", quality, true}};
-      nlohmann::json entry = shape_json(describe_mesh_shape(level));
-      entry["file"] = file;
-      if (!reference.empty()) {
-        const auto d = distances_to_surface(level.points, reference_mesh);
-        const DistanceStats st = summarize_distances(d);
-        entry["distance_to_reference"] = st.to_json();
-        std::vector<double> on_boundary, inside;
-        for (std::size_t i = 0; i < d.size(); ++i) (level.boundary[i] == BoundaryType::interior ? inside : on_boundary).push_back(d[i]);
-        entry["distance_to_reference"]["interior_nodes"] = summarize_distances(inside).to_json();
-        entry["distance_to_reference"]["boundary_nodes"] = summarize_distances(on_boundary).to_json();
-        Eigen::MatrixXd err(d.size(), 1);
-        for (std::size_t i = 0; i < d.size(); ++i) err(i, 0) = d[i];
-        extra.push_back({"Error_mm", err, false});
-      }
-      write_mesh(out / file, level, nullptr, extra);
-      write_mesh_copies(out / file, mesh_copies, level, nullptr, extra);
-      levels.push_back(entry);
+    nlohmann::json& m = summary.metrics() = remesh_metrics(ms, rs, mesh, loops);
+    const std::vector<RemeshLevel> levels = remesh_levels(mesh, subdivide, name, reference.empty() ? nullptr : &reference_mesh);
+    for (const RemeshLevel& level : levels) {
+      write_mesh(out / level.file, level.mesh, nullptr, level.arrays);
+      write_mesh_copies(out / level.file, mesh_copies, level.mesh, nullptr, level.arrays);
+      m["meshes"].push_back(level.entry);
     }
-    m["meshes"] = levels;
     write_slicer_curves(out / (name + ".landmarks.mrk.json"), valve_landmark_curves(mesh, flatten(mesh.points)));
     m["landmarks_file"] = name + ".landmarks.mrk.json";
-    if (!rs.count_within_tolerance)
-      summary.set_status("not_converged", "no edge length gave a count within " + std::to_string(int(100 * ro.tolerance)) +
-                                              " % of " + std::to_string(ro.target_triangles) + " triangles in " +
-                                              std::to_string(rs.attempts) + " attempts; the closest (" +
-                                              std::to_string(mesh.num_triangles()) + ") is written");
+    if (!rs.count_within_tolerance) summary.set_status("not_converged", remesh_not_converged_reason(ro, rs, mesh.num_triangles()));
     if (cl.has("write-membrane")) {
       write_mesh(out / "membrane.vtp", membrane);
       m["membrane_file"] = "membrane.vtp";
     }
     summary.write();
     progress.finish("meshes written");
-    if (!cl.has("quiet")) {
-      const auto& e = levels[0];
-      std::printf("valve-remesh: %d triangles, quality mean %.3f min %.3f, valence %.2f, %d boundary loop(s)%s -> %s\n",
-                  e["triangles"].get<int>(), e["quality_mean"].get<double>(), e["quality_min"].get<double>(),
-                  e["mean_interior_valence"].get<double>(), loops,
-                  reference.empty() ? "" : (", mean distance to reference " + std::to_string(e["distance_to_reference"]["mean_mm"].get<double>()).substr(0, 5) + " mm").c_str(),
-                  (out / e["file"].get<std::string>()).string().c_str());
-    }
+    if (!cl.has("quiet"))
+      std::printf("valve-remesh: %s -> %s\n", remesh_report_line(levels[0], loops).c_str(), (out / levels[0].file).string().c_str());
     return rs.count_within_tolerance ? 0 : 3;
   });
 }

@@ -13,32 +13,19 @@
 // (tubes vs sheets; for chords as thick as the leaflets). Physical coordinates (LPS, mm) throughout.
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "valve/core/cli.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/progress.hpp"
 #include "valve/core/stage_arguments.hpp"
-#include "valve/imaging/segmentation.hpp"
+#include "valve/core/system_memory.hpp"
+#include "valve/imaging/segmentation_report.hpp"
 #include "valve/io/image_io.hpp"
 #include "stage_usage.hpp"
 
 using namespace valve;
 namespace fs = std::filesystem;
-
-namespace {
-// Half the available memory, from /proc/meminfo (0: unknown).
-double default_memory_limit() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key;
-  double kb = 0;
-  std::string unit;
-  while (meminfo >> key >> kb >> unit)
-    if (key == "MemAvailable:") return kb * 1024 / 2;
-  return 0;
-}
-}  // namespace
 
 int main(int argc, char** argv) {
   return run_stage("valve-segment", kStageUsage, [&] {
@@ -47,12 +34,7 @@ int main(int argc, char** argv) {
                                            "chordae_method", "chordae_opening_radius", "tube_scale", "tube_ratio", "tube_ridge_offset", "sheet_ratio",
                                            "tube_growth", "notch_closing_radius",
                                            "min_component", "max_memory"};
-    CommandLine cl(argc, argv,
-                   {"out", "config", "name", "crop-min", "crop-max", "denoise", "gaussian-sigma", "median-radius",
-                    "diffusion-iterations", "threshold", "seed", "closing-radius", "chordae-method", "chordae-opening-radius",
-                    "tube-scale", "tube-ratio", "tube-ridge-offset", "sheet-ratio", "tube-growth", "notch-closing-radius", "min-component",
-                    "max-memory"},
-                   {"quiet"});
+    CommandLine cl(argc, argv, stage_flags({"out", "config"}, keys), {"quiet"});
     if (cl.positional().size() != 1)
       throw InputError("valve-segment: IMAGE: expected one image file or DICOM directory, found " +
                        std::to_string(cl.positional().size()) + " arguments");
@@ -86,10 +68,9 @@ int main(int argc, char** argv) {
     o.notch_closing_radius = args.length_mm("notch-closing-radius", o.notch_closing_radius, 0, 20);
     o.min_component_mm3 = args.number("min-component", o.min_component_mm3, 0, 1e9);
     ImageReadOptions read;
-    read.max_bytes = args.number("max-memory", default_memory_limit() / 1e9, 0.001, 1e6) * 1e9;
-    // Float input, smoothed copy, masks and 32-bit component labels; the Hessian method adds
-    // a six-float tensor, a three-float gradient and the filters' intermediate float images.
-    read.working_copies = o.chordae_method == "hessian" ? 18 : 6;
+    // Half the available memory by default (0: unknown, no limit).
+    read.max_bytes = args.number("max-memory", available_memory_bytes() / 2 / 1e9, 0.001, 1e6) * 1e9;
+    read.working_copies = segmentation_working_copies(o);
     o.validate("valve-segment");
 
     Progress progress("valve-segment", cl.has("quiet"));
@@ -108,27 +89,14 @@ int main(int argc, char** argv) {
     StageSummary summary("segment", out);
     summary.add_input("image", image_file);
     summary.parameters() = args.used();
-    const double voxel = s.cropped.spacing.prod();
-    summary.metrics() = {
-        {"labels", name + ".nrrd"},
-        {"slicer_segmentation", name + ".seg.nrrd"},
-        {"threshold", s.threshold},
-        {"threshold_method", o.threshold_method},
-        {"size", {s.cropped.size[0], s.cropped.size[1], s.cropped.size[2]}},
-        {"spacing_mm", {s.cropped.spacing.x(), s.cropped.spacing.y(), s.cropped.spacing.z()}},
-        {"origin_mm", {s.cropped.origin.x(), s.cropped.origin.y(), s.cropped.origin.z()}},
-        {"voxels", {{"tissue", s.voxels_tissue}, {"leaflet", s.voxels_leaflet}, {"chordae", s.voxels_chordae}, {"other", s.voxels_other}}},
-        {"volume_mm3", {{"leaflet", s.voxels_leaflet * voxel}, {"chordae", s.voxels_chordae * voxel}, {"other", s.voxels_other * voxel}}},
-        {"components", s.components},
-        {"leaflet_components", s.leaflet_components},
-        {"chordae_separated", s.chordae_separated},
-        {"chordae_method", o.chordae_method},
-        {"chordae_pieces", s.chordae_pieces}};
+    summary.metrics() = segmentation_metrics(s, o, name);
+    const nlohmann::json volume_mm3 = summary.metrics()["volume_mm3"];
     summary.write();
     progress.finish("labels written");
     if (!cl.has("quiet"))
       std::printf("valve-segment: threshold %.4g, leaflet %.1f mm3, chordae %.1f mm3 in %d pieces -> %s\n", s.threshold,
-                  s.voxels_leaflet * voxel, s.voxels_chordae * voxel, s.chordae_pieces, (out / (name + ".nrrd")).string().c_str());
+                  volume_mm3["leaflet"].get<double>(), volume_mm3["chordae"].get<double>(), s.chordae_pieces,
+                  (out / (name + ".nrrd")).string().c_str());
     return 0;
   });
 }

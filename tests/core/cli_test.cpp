@@ -48,3 +48,23 @@ TEST_CASE("an atomic write leaves the whole file and no temporary beside it", "[
   CHECK(entries == 1);
   fs::remove_all(dir);
 }
+
+TEST_CASE("a numeric flag is a plain decimal in range, or the fallback when absent", "[core][cli]") {
+  auto flags = [](std::vector<std::string> words) {
+    std::vector<char*> argv;
+    for (auto& w : words) argv.push_back(w.data());
+    return CommandLine(static_cast<int>(argv.size()), argv.data(), {"n"}, {});
+  };
+  CHECK(number_flag(flags({"stage"}), "n", 7.5, 0, 10) == 7.5);
+  CHECK(number_flag(flags({"stage", "--n", "2.25"}), "n", 0, 0, 10) == 2.25);
+  CHECK(number_flag(flags({"stage", "--n", "-1e-3"}), "n", 0, -1, 1) == -0.001);
+  for (const char* bad : {"0x2", "inf", "nan", "2abc", "", "11"})
+    CHECK_THROWS_WITH(number_flag(flags({"stage", "--n", bad}), "n", 0, 0, 10),
+                      std::string("--n: expected a number in [0, 10], found \"") + bad + "\"");
+  CHECK(whole_number_flag(flags({"stage", "--n", "12"}), "n", 1, 0, 100) == 12);
+  CHECK(whole_number_flag(flags({"stage"}), "n", 3, 0, 100) == 3);
+  CHECK_THROWS_WITH(whole_number_flag(flags({"stage", "--n", "12.5"}), "n", 1, 0, 100),
+                    "--n: expected a whole number in [0, 100], found \"12.5\"");
+  CHECK_THROWS_WITH(whole_number_flag(flags({"stage", "--n", "lots"}), "n", 1, 0, 100),
+                    "--n: expected a number in [0, 100], found \"lots\"");
+}

@@ -137,3 +137,16 @@ TEST_CASE("the annulus can be taken from a landmark instead of the outer loop", 
   // A reference without a marked annulus is refused.
   CHECK_THROWS_AS(annulus_segments(ring_membrane(), "plain.vtp"), InputError);
 }
+
+TEST_CASE("a given membrane keeps every face and the atrial direction given or estimated", "[remesh][membrane]") {
+  const TriMesh m = ring_membrane();
+  const MembraneSummary given = describe_given_membrane(m, Vec3(0, 0, 2));
+  CHECK(given.atrial_direction == Vec3::UnitZ());
+  CHECK_FALSE(given.direction_estimated);
+  CHECK(given.faces_in == 2 * 24 * 2);
+  CHECK(given.faces_kept == given.faces_in);
+  // Without one: the funnel's wide end is up, so the estimate is +z.
+  const MembraneSummary estimated = describe_given_membrane(m, std::nullopt);
+  CHECK(estimated.direction_estimated);
+  CHECK(estimated.atrial_direction.z() > 0.999);
+}

@@ -7,14 +7,16 @@ import pathlib
 import re
 import sys
 
-# Lowest first. config reads JSON into the laws' options (material/); scene assembles
-# everything a scene file declares, so it sits on top.
+# Lowest first. config reads JSON into the laws' options (material/); remesh reports its
+# meshes' distance to a reference (analysis/); phantom voxelizes models io/ reads; scene
+# assembles everything a scene file declares, so it sits on top.
 LAYERS = [
     ["core"],
     ["mesh", "material", "pipeline"],
-    ["config", "imaging", "remesh", "mechanics", "analysis"],
-    ["solver", "chordae"],
-    ["io", "phantom"],
+    ["config", "imaging", "mechanics", "analysis"],
+    ["solver", "chordae", "remesh"],
+    ["io"],
+    ["phantom"],
     ["scene"],
 ]
 layer_of = {module: k for k, modules in enumerate(LAYERS) for module in modules}

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 
 #include "valve/core/atomic_file.hpp"
@@ -87,6 +88,26 @@ std::optional<std::string> CommandLine::get(const std::string& flag) const {
 std::vector<std::string> CommandLine::get_all(const std::string& flag) const {
   auto it = values_.find(flag);
   return it == values_.end() ? std::vector<std::string>{} : it->second;
+}
+
+double number_flag(const CommandLine& cl, const std::string& flag, double fallback, double lo, double hi) {
+  const auto v = cl.get(flag);
+  if (!v) return fallback;
+  char* end = nullptr;
+  const double x = std::strtod(v->c_str(), &end);
+  const bool plain = v->find_first_of("xXnN") == std::string::npos;
+  if (!plain || end == v->c_str() || *end != '\0' || !(x >= lo && x <= hi))
+    throw InputError("--" + flag + ": expected a number in [" + format_number(lo) + ", " + format_number(hi) + "], found \"" +
+                     *v + "\"");
+  return x;
+}
+
+long whole_number_flag(const CommandLine& cl, const std::string& flag, long fallback, long lo, long hi) {
+  const double x = number_flag(cl, flag, static_cast<double>(fallback), static_cast<double>(lo), static_cast<double>(hi));
+  if (x != std::floor(x))
+    throw InputError("--" + flag + ": expected a whole number in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                     "], found \"" + *cl.get(flag) + "\"");
+  return static_cast<long>(x);
 }
 
 void apply_override(nlohmann::json& config, const std::string& assignment, const std::string& where) {

@@ -41,6 +41,14 @@ class CommandLine {
   std::vector<std::string> positional_;
 };
 
+/// --flag as a plain decimal number in [lo, hi], `fallback` when absent. Hexadecimal ("0x20"),
+/// "inf" and "nan", which strtod also reads, are refused with the rest: InputError
+/// "--flag: expected a number in [lo, hi], found \"value\"".
+double number_flag(const CommandLine& cl, const std::string& flag, double fallback, double lo, double hi);
+
+/// The same, for a whole number ("12.5" is refused as "expected a whole number in [lo, hi]").
+long whole_number_flag(const CommandLine& cl, const std::string& flag, long fallback, long lo, long hi);
+
 /// Applies "--set key.path=value" overrides to a JSON config: creates objects along the
 /// path; the value is parsed as JSON when it is valid JSON (numbers, true, objects), else
 /// kept as a string ("20 kPa"). Throws InputError for a malformed assignment.

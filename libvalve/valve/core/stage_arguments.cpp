@@ -48,6 +48,17 @@ std::string shown(const nlohmann::json& j) { return j.is_string() ? "\"" + j.get
 
 }  // namespace
 
+std::vector<std::string> stage_flags(const std::vector<std::string>& leading, const std::vector<std::string>& config_keys,
+                                     const std::vector<std::string>& trailing) {
+  std::vector<std::string> flags = leading;
+  for (std::string key : config_keys) {
+    std::replace(key.begin(), key.end(), '_', '-');
+    flags.push_back(key);
+  }
+  flags.insert(flags.end(), trailing.begin(), trailing.end());
+  return flags;
+}
+
 StageArguments::StageArguments(const CommandLine& cl, const std::vector<std::string>& config_keys)
     : cl_(cl), program_(cl.program()) {
   if (const auto file = cl.get("config")) {

@@ -15,6 +15,11 @@
 
 namespace valve {
 
+/// A stage's --flags: `leading`, then the flag of each config key ("gaussian_sigma" ->
+/// "gaussian-sigma"), then `trailing`. The order is the one --xml lists them in.
+std::vector<std::string> stage_flags(const std::vector<std::string>& leading, const std::vector<std::string>& config_keys,
+                                     const std::vector<std::string>& trailing = {});
+
 class StageArguments {
  public:
   /// Reads --config FILE.json if the command line has it; unknown config keys are refused.

@@ -208,4 +208,12 @@ int mark_annulus_near(TriMesh& mesh, const std::vector<std::pair<Vec3, Vec3>>& a
   return static_cast<int>(topo.loops.size());
 }
 
+MembraneSummary describe_given_membrane(const TriMesh& surface, const std::optional<Vec3>& atrial_direction) {
+  MembraneSummary summary;
+  summary.direction_estimated = !atrial_direction;
+  summary.atrial_direction = atrial_direction ? atrial_direction->normalized() : estimate_atrial_direction(surface.points);
+  summary.faces_in = summary.faces_kept = surface.num_triangles();
+  return summary;
+}
+
 }  // namespace valve

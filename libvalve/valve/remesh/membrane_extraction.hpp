@@ -42,6 +42,10 @@ TriMesh extract_atrial_membrane(const TriMesh& surface, const MembraneOptions& o
 /// PCA axis of least spread, signed so that points far from the axis lie on its positive side.
 Vec3 estimate_atrial_direction(const MatX3& points);
 
+/// The membrane of an input that already is one (a mid-surface, e.g. a finite element
+/// model): the surface itself, every face kept. The summary's atrial direction is the given
+/// one, normalized, or estimated from the points (estimate_atrial_direction) when none is.
+MembraneSummary describe_given_membrane(const TriMesh& surface, const std::optional<Vec3>& atrial_direction);
 
 
 /// Marks boundary loops: the loop lying farthest along `atrial_direction` (mean height) is the
