@@ -197,6 +197,14 @@ TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the e
   const auto num = numeric_dfdx(cf, z, v, 1.0, 1e-7);
   // The node's motion along the face normal: b''(s) dominates, the projection keeps it.
   CHECK(ana(11, 11) == Approx(num(11, 11)).epsilon(0.02));
+  // In exact mode the Jacobian is the whole Hessian: every entry the finite-difference
+  // Jacobian's, with the positive eigenvalue (the b'(s) ∇²d part, sliding over the face) the
+  // projection clamps.
+  cf.set_jacobian_mode(JacobianMode::exact);
+  const auto exact = analytic_dfdx(cf, m.num_nodes(), z, v, 1.0);
+  CHECK((exact - num).norm() < 1e-4 * num.norm());
+  CHECK(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(exact).eigenvalues().maxCoeff() > 1e-6 * exact.norm());
+  CHECK((ana - num).norm() > 1e-3 * num.norm());
 }
 
 TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the offset", "[mechanics][penalty_contact]") {

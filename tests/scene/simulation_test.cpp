@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../support/test_meshes.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/scene/scene_config.hpp"
 #include "valve/mesh/generators.hpp"
@@ -402,4 +403,38 @@ TEST_CASE("max_wall_seconds bounds a whole closure, not each load increment", "[
       }
     }
   }
+}
+
+TEST_CASE("a perturbation offsets free start positions within its amplitude, the same for the same seed", "[scene]") {
+  const TriMesh mesh = test::grid_mesh();
+  std::vector<char> constrained(3 * mesh.num_nodes(), 0);
+  constrained[0] = constrained[1] = constrained[2] = 1;  // node 0 fixed
+  constrained[5] = 1;                                    // node 1's z only
+  PerturbationConfig p;
+  p.amplitude = 1e-3;
+  p.seed = 5489;  // std::mt19937_64's default seed: its first output is 14514284786278117030
+  const TriMesh a = perturb_start_positions(mesh, constrained, p);
+  // The first free coordinate (node 1, x) takes the generator's second output; node 0's three
+  // draws are spent unused, so the offsets do not depend on which nodes are fixed.
+  const MatX3 offset = a.initial - mesh.points;
+  CHECK(offset.row(0).isZero());
+  CHECK(offset(1, 2) == 0);
+  double largest = 0, mean_abs = 0;
+  int free_coordinates = 0;
+  for (int i = 0; i < mesh.num_nodes(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (!constrained[3 * i + c]) {
+        largest = std::max(largest, std::abs(offset(i, c)));
+        mean_abs += std::abs(offset(i, c));
+        ++free_coordinates;
+      }
+  CHECK(largest <= 1e-3);
+  CHECK(mean_abs / free_coordinates == Approx(0.5e-3).margin(0.25e-3));  // uniform on [−a, a]: mean |u| a = a/2
+  const TriMesh again = perturb_start_positions(mesh, constrained, p);
+  CHECK(again.initial == a.initial);
+  std::vector<char> all_free(constrained.size(), 0);
+  const TriMesh first = perturb_start_positions(mesh, all_free, p);
+  CHECK((first.initial(0, 0) - mesh.points(0, 0)) == Approx(0.5736419097356038e-3).epsilon(1e-12));  // 2 u/2^64 − 1, u the first output
+  p.seed = 5490;
+  CHECK_FALSE(perturb_start_positions(mesh, constrained, p).initial == a.initial);
 }

@@ -23,6 +23,12 @@ struct State {
   double time = 0.0;
 };
 
+/// How a term with an indefinite Hessian (the contact barrier) gives its Jacobian: projected
+/// to positive semi-definite, so that a Newton matrix with it stays positive definite far from
+/// equilibrium; or exact, so that Newton's method converges quadratically near equilibrium
+/// (the projection's error makes the last iterations linear).
+enum class JacobianMode { projected, exact };
+
 class ForceTerm {
  public:
   virtual ~ForceTerm() = default;
@@ -36,6 +42,8 @@ class ForceTerm {
     (void)s, (void)e;
     return false;
   }
+  /// Terms whose Hessian may be indefinite follow `mode` from the next evaluation on.
+  virtual void set_jacobian_mode(JacobianMode mode) { (void)mode; }
   /// Whether df/dv is nonzero (damping).
   virtual bool depends_on_velocity() const { return false; }
   /// Terms whose couplings follow the state (contact) refresh them here and return true

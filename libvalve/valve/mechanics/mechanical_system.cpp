@@ -100,6 +100,10 @@ bool MechanicalSystem::internal_energy(const State& s, double& e, std::string* m
   return true;
 }
 
+void MechanicalSystem::set_jacobian_mode(JacobianMode mode) {
+  for (auto& t : terms_) t->set_jacobian_mode(mode);
+}
+
 double MechanicalSystem::step_ratio(const VecX& x, const VecX& dx) const {
   double r = 0;
   for (const auto& t : terms_) r = std::max(r, t->step_ratio(x, dx));

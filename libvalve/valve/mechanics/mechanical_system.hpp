@@ -67,6 +67,8 @@ class MechanicalSystem {
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
   /// Smallest max_step_length() of the terms (infinity if none limits the step).
   double max_step_length() const;
+  /// Every term's Jacobian mode (ForceTerm::set_jacobian_mode) from the next evaluation on.
+  void set_jacobian_mode(JacobianMode mode);
   /// The largest step_ratio() of the terms for a step dx from x, the state of the last
   /// Jacobian evaluation (0 if no term limits steps); a step is acceptable up to 1.
   double step_ratio(const VecX& x, const VecX& dx) const;

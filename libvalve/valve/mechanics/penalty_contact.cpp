@@ -254,6 +254,7 @@ PenaltyContactTerm::PairMatrix PenaltyContactTerm::projected_pair_hessian(const 
     ym[k] -= h;
     H.col(k) = (pair_gradient(c.edge, yp) - pair_gradient(c.edge, ym)) / (2 * h);
   }
+  if (jacobian_mode_ == JacobianMode::exact) return 0.5 * (H + H.transpose());
   const Eigen::SelfAdjointEigenSolver<PairMatrix> eig(0.5 * (H + H.transpose()));
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
 }

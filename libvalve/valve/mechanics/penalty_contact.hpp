@@ -13,7 +13,8 @@
 // Jacobian is the pair's whole Hessian κ (b''(s) ∇d ∇dᵀ + b'(s) ∇²d), projected to positive
 // semi-definite (its 12 × 12 eigenvalues clamped at 0), as IPC does: the Gauss–Newton part
 // alone left the quasi-static solver converging linearly where pressed pairs slide (1,221
-// iterations on the sample mitral closure). Its gradient is exact (the envelope theorem, as
+// iterations on the sample mitral closure); near equilibrium the quasi-static solver asks for
+// the exact Hessian instead (set_jacobian_mode). Its gradient is exact (the envelope theorem, as
 // below); ∇²d, whose closed forms differ for each closest feature (face, edge, vertex),
 // comes from central differences of that gradient (step 1e-6 mm). The step bound (step_ratio) keeps every candidate pair's closing below
 // 0.8 (d − ξ), the conservative continuous collision bound of the supporting-plane argument
@@ -138,6 +139,9 @@ class PenaltyContactTerm final : public ContactForceTerm {
   double max_step_length() const override { return std::min(verlet_step(), 0.4 * opt_.separation); }
   ContactPotential potential() const { return opt_.potential; }
   double step_ratio(const VecX& x, const VecX& dx) const override;
+  /// The barrier's pair Hessians projected (default) or exact; the penalty's is always its
+  /// Gauss–Newton part.
+  void set_jacobian_mode(JacobianMode mode) override { jacobian_mode_ = mode; }
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
   bool energy(const State& s, double& e) const override;
 
@@ -158,7 +162,8 @@ class PenaltyContactTerm final : public ContactForceTerm {
   using PairMatrix = Eigen::Matrix<double, 12, 12>;
   /// The pair's energy gradient over its four nodes' coordinates at positions `y`.
   PairVector pair_gradient(bool edge, const PairVector& y) const;
-  /// The barrier pair's Hessian, projected to positive semi-definite (below).
+  /// The barrier pair's Hessian, projected to positive semi-definite (below) unless the
+  /// Jacobian mode is exact.
   PairMatrix projected_pair_hessian(const Contact& c, const VecX& x) const;
   /// A candidate pair's distance d and unit direction n from the second side (triangle, or
   /// the other edge) to the first (node, or query edge); n = 0 when d vanishes.
@@ -196,6 +201,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
   std::vector<Contact> contacts_;   // and what it found
   std::vector<PairGap> pair_gaps_;  // there: each candidate pair's gap (face, then edge pairs)
   mutable ContactStatistics stats_;
+  JacobianMode jacobian_mode_ = JacobianMode::projected;
 };
 
 }  // namespace valve

@@ -287,6 +287,14 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     r.record("annulus_motion", a.finish());
     sc.annulus_motion = ac;
   }
+  if (r.has("perturbation")) {
+    JsonReader p = r.object("perturbation");
+    PerturbationConfig pc;
+    pc.amplitude = p.quantity("amplitude", Dimension::length, std::nullopt, 0.0, 1.0);
+    pc.seed = static_cast<std::uint64_t>(p.integer("seed", static_cast<int>(pc.seed), 0, 2147483647));
+    r.record("perturbation", p.finish());
+    sc.perturbation = pc;
+  }
   if (r.has("leaflet_materials")) {
     // The list inline, or the path of a JSON file holding it (valve-phantom ttv writes the
     // deck's leaflet laws so); paths inside a file are taken from its folder.
@@ -423,6 +431,7 @@ json every_block_scene() {
           {"coaptation", json::object()},
           {"chordae", {{"file", "chordae.json"}}},
           {"annulus_motion", {{"closed_mesh", "closed.vtp"}}},
+          {"perturbation", {{"amplitude", "1e-6 mm"}}},
           {"leaflet_materials", json::array({{{"leaflets", {0}}, {"material", fung}}})},
           {"load", json::object()},
           {"solver", json::object()},

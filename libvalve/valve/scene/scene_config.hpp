@@ -4,6 +4,7 @@
 // load increments, solver, monitor, output).
 // Everything is validated and defaulted here, in one place; `used` records the values
 // after defaults for the stage summary. scene_key_table() lists the keys for docs/scene.md.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -103,6 +104,12 @@ struct AnnulusMotionConfig {
   /// closed mesh (two states of one model, e.g. Texas TriValve frames 0 and 20).
   enum class Correspondence { arc_length, nodes } correspondence = Correspondence::arc_length;
 };
+/// A small random offset of every free node's start position, for reproducibility studies:
+/// does the closed shape depend on rounding-sized differences of the input?
+struct PerturbationConfig {
+  double amplitude = 0;    // mm: each coordinate moves by amplitude × u, u uniform in [−1, 1]
+  std::uint64_t seed = 1;  // the same seed gives the same offsets on every machine
+};
 /// A material (and thickness) for some leaflets, overriding the scene's.
 struct LeafletMaterialConfig {
   std::vector<int> leaflets;
@@ -129,6 +136,7 @@ struct SceneConfig {
   /// How valve-simulate measures coaptation of a multi-leaflet mesh (the axis comes from aortic_root).
   CoaptationOptions coaptation;
   std::optional<AnnulusMotionConfig> annulus_motion;
+  std::optional<PerturbationConfig> perturbation;
   std::vector<LeafletMaterialConfig> leaflet_materials;
   std::vector<double> load_increments{1.0};
   SolverKind solver = SolverKind::automatic;

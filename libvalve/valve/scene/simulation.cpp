@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <random>
 
 #include "valve/core/error.hpp"
 #include "valve/analysis/leaflet_metrics.hpp"
@@ -311,8 +312,24 @@ RootDistension distend_root(const SceneConfig& sc, const TriMesh& mesh, VecX& x)
   return out;
 }
 
-SimulationResult simulate(const SceneConfig& sc, const TriMesh& input_mesh, MechanicalSystem& sys,
+TriMesh perturb_start_positions(const TriMesh& mesh, const std::vector<char>& constrained, const PerturbationConfig& p) {
+  TriMesh out = mesh;
+  out.initial = mesh.start_positions();
+  std::mt19937_64 generator(p.seed);
+  for (int i = 0; i < out.num_nodes(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      // 53 random bits to [0, 1), then [−1, 1): std::uniform_real_distribution's mapping is
+      // left to the library, this one is not.
+      const double u = 2 * static_cast<double>(generator() >> 11) * 0x1.0p-53 - 1;
+      if (!constrained[3 * i + c]) out.initial(i, c) += p.amplitude * u;
+    }
+  return out;
+}
+
+SimulationResult simulate(const SceneConfig& sc, const TriMesh& unperturbed_mesh, MechanicalSystem& sys,
                           const SimulationHooks& hooks) {
+  const TriMesh input_mesh = sc.perturbation ? perturb_start_positions(unperturbed_mesh, sys.constrained(), *sc.perturbation)
+                                             : unperturbed_mesh;
   std::optional<RootDistension> root;
   TriMesh distended;
   if (sc.aortic_root) {

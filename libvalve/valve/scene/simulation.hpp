@@ -65,8 +65,13 @@ struct SimulationHooks {
   std::function<void(int increment, const VecX& x, const IncrementResult&)> on_increment;
 };
 
+/// `mesh` with the start position of every node that `constrained` leaves free offset by
+/// amplitude × u per coordinate, u uniform in [−1, 1] from a 64-bit Mersenne Twister seeded
+/// with `seed` (the same offsets on every platform). Constrained nodes keep their positions.
+TriMesh perturb_start_positions(const TriMesh& mesh, const std::vector<char>& constrained, const PerturbationConfig& p);
+
 /// Runs the scene's solver over its load increments, stopping at the first increment that
-/// does not converge.
+/// does not converge. A scene's perturbation offsets the start first.
 SimulationResult simulate(const SceneConfig& scene, const TriMesh& mesh, MechanicalSystem& system,
                           const SimulationHooks& hooks = {});
 
