@@ -15,7 +15,7 @@ string(APPEND text "\nEvery stage also takes:\n"
   "  --xml   prints the stage's 3D Slicer CLI module description (XML) and exits\n"
   "  --help  prints this text and exits\n")
 if(DEFINED PAGE)
-  set(page "# ${NAME}\n\nWhat `${NAME} --help` prints: the leading comment of\n"
+  string(CONCAT page "# ${NAME}\n\nWhat `${NAME} --help` prints: the leading comment of\n"
            "[`stages/${NAME}/main.cpp`](../../stages/${NAME}/main.cpp), made into this page when the stage is built.\n\n"
            "```text\n${text}```\n")
   set(previous_page "")
