@@ -69,6 +69,10 @@ void parse_quasistatic(JsonReader& r, QuasistaticOptions& o) {
   o.initial_increment = r.number("initial_increment", o.initial_increment, 1e-9, 1.0);
   o.min_increment = r.number("min_increment", o.min_increment, 1e-15, 1.0);
   o.initial_proximal_step = r.number("initial_proximal_step_ms2", o.initial_proximal_step, 1e-20, 1e20);
+  o.proximal_rule = r.choice("proximal_rule", {"step", "gain"},
+                             std::string(o.proximal_rule == ProximalStepRule::gain ? "gain" : "step")) == "gain"
+                        ? ProximalStepRule::gain
+                        : ProximalStepRule::step;
   if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
   else r.record("trust_radius", "5% of the bounding-box diagonal");
   r.document("trust_radius", to_string(Dimension::length), "5% of the bounding-box diagonal");

@@ -127,20 +127,24 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
           if (sufficient) {
             x = trial;
             accepted = true;
-            // δ follows how well the quadratic model predicted the merit's fall (the gain
-            // ratio of trust-region methods; with H Δ = f the model's fall at step α is
-            // α f·Δ (1 − α/2)): a good prediction on a step taken at once earns less
-            // regularisation, ×4 for a whole step, ×2 for one a step bound shortened; a poor
-            // one (gain below 1/4) more. Measured against rules on the step alone (grow when
-            // accepted at once, or not when the trust radius cut it), this is the one that
-            // converged on every closure tried, without a slow outlier: the aortic valve FE
-            // 471 and M-S 515 iterations, the remeshed Texas TriValve 368, the sample mitral 257.
-            const double predicted = alpha * descent * (1 - alpha / 2);
-            const double gain = std::isfinite(merit) ? (pi0 - merit) / predicted : -1;
-            if (gain > 0.75 && search == 0)
-              delta = std::min(delta * (beyond_trust || ratio > 1 ? 2 : 4), kMaxProximalStep);
-            else if (gain < 0.25)
-              delta *= 0.5;
+            if (opt.proximal_rule == ProximalStepRule::step) {
+              // A direction accepted at once earns less regularisation (less still if the
+              // step was whole); one that needed cutting back, more; one longer than the
+              // trust radius, nothing: the model is not yet trusted that far.
+              if (!beyond_trust && search == 0)
+                delta = std::min(delta * (ratio > 1 ? 2 : 4), kMaxProximalStep);
+              else if (!beyond_trust && search > 1)
+                delta *= 0.5;
+            } else {
+              // The gain ratio of trust-region methods: the merit's fall over the quadratic
+              // model's, α f·Δ (1 − α/2) with H Δ = f.
+              const double predicted = alpha * descent * (1 - alpha / 2);
+              const double gain = std::isfinite(merit) ? (pi0 - merit) / predicted : -1;
+              if (gain > 0.75 && search == 0)
+                delta = std::min(delta * (beyond_trust || ratio > 1 ? 2 : 4), kMaxProximalStep);
+              else if (gain < 0.25)
+                delta *= 0.5;
+            }
           }
         }
         if (!accepted) delta *= 0.25;
