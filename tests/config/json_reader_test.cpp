@@ -39,7 +39,8 @@ TEST_CASE("KeySpecRecorder notes each key of its file with type, default and ran
   sub.integer("n", 4, 1, 2147483647);
   sub.number("x", 2.5, 0.0, 1e12);
   sub.document("x", "", "twice n");
-  JsonReader other(json::object(), "preset.json");
+  const json preset = json::object();
+  JsonReader other(preset, "preset.json");
   other.number("ignored", 1.0);
   const auto& keys = recorder.keys();
   REQUIRE(keys.size() == 5);

@@ -55,6 +55,8 @@ class JsonReader {
  public:
   /// `file` names the source for messages; `path` is the key path of `object` in it.
   JsonReader(const json& object, std::string file, std::string path = "");
+  /// The reader keeps a reference to `object`: a temporary would dangle.
+  JsonReader(json&& object, std::string file, std::string path = "") = delete;
 
   bool has(const std::string& key) const;
 
