@@ -21,16 +21,10 @@ std::string describe_json(const json& v) {
 namespace {
 thread_local KeySpecRecorder* active_recorder = nullptr;
 
-// "[min, max]", "≥ min" or "≤ max" with each bound formatted by `text`; empty without bounds.
 // A range bound for the key tables: 1e+12 reads better there as 1e12.
 std::string bound_text(double x) {
   if (x == static_cast<long long>(x) && std::fabs(x) < 1e6) return format_number(x);
-  char buf[40];
-  for (int p = 1; p <= 17; ++p) {
-    std::snprintf(buf, sizeof buf, "%.*g", p, x);
-    if (std::strtod(buf, nullptr) == x) break;
-  }
-  std::string text = buf;
+  std::string text = format_shortest_general(x);
   for (const char* noise : {"e+0", "e+", "e-0"}) {
     const auto at = text.find(noise);
     if (at != std::string::npos) {
@@ -41,6 +35,7 @@ std::string bound_text(double x) {
   return text;
 }
 
+// "[min, max]", "≥ min" or "≤ max" with each bound formatted by `text`; empty without bounds.
 template <class T, class Text>
 std::string range_text(T min, T max, T no_min, T no_max, Text text) {
   if (min > no_min && max < no_max) return "[" + text(min) + ", " + text(max) + "]";
@@ -198,10 +193,7 @@ double JsonReader::quantity(const std::string& key, Dimension dim, double fallba
 double JsonReader::quantity_from_text(const std::string& key, Dimension dim, const std::string* fallback, double min,
                                       double max) {
   note(key, to_string(dim), fallback ? *fallback : "required",
-       range_text(min, max, -1e300, 1e300, [dim](double x) {
-         const std::string unit = format_quantity(0, dim).substr(1);  // " mm"
-         return bound_text(x) + unit;
-       }));
+       range_text(min, max, -1e300, 1e300, [dim](double x) { return bound_text(x) + " " + internal_unit(dim); }));
   const json* v = find(key);
   std::string text;
   if (!v) {

@@ -33,6 +33,10 @@ std::string format_number(double x) {
     std::snprintf(buf, sizeof buf, "%.0f", x == 0 ? 0.0 : x);  // no "-0"
     return buf;
   }
+  return format_shortest_general(x);
+}
+
+std::string format_shortest_general(double x) {
   char buf[40];
   for (int p = 1; p <= 17; ++p) {
     std::snprintf(buf, sizeof buf, "%.*g", p, x);

@@ -32,6 +32,9 @@ std::string describe_problem(const std::string& where, const std::string& key,
 /// Shortest decimal text that reads back as exactly `x` ("45", "0.1", "1e-05"; "nan", "inf"),
 /// for the values messages and tables show.
 std::string format_number(double x);
+/// The shortest "%g" text that reads back as exactly x ("1e+12", "2.5e-07"); format_number
+/// uses it for numbers that are not whole.
+std::string format_shortest_general(double x);
 
 [[noreturn]] void throw_input_error(const std::string& where, const std::string& key,
                                     const std::string& expected, const std::string& found);

@@ -75,10 +75,14 @@ std::vector<std::string> accepted_units(Dimension dim) {
   return out;
 }
 
-std::string format_quantity(double internal_value, Dimension dim) {
+std::string internal_unit(Dimension dim) {
   for (const auto& u : table(dim))
-    if (u.factor == 1.0) return format_number(internal_value) + " " + u.name;
-  return format_number(internal_value);
+    if (u.factor == 1.0) return u.name;
+  return "";  // unreachable: every table holds its internal unit
+}
+
+std::string format_quantity(double internal_value, Dimension dim) {
+  return format_number(internal_value) + " " + internal_unit(dim);
 }
 
 double parse_quantity(const std::string& text, Dimension dim, const std::string& where) {

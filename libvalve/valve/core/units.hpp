@@ -32,6 +32,9 @@ double parse_quantity(const std::string& text, Dimension dim, const std::string&
 /// Units accepted for a dimension, for error messages and docs.
 std::vector<std::string> accepted_units(Dimension dim);
 
+/// The internal unit of a dimension, as parse_quantity accepts it: "mm", "MPa", "g/mm^3".
+std::string internal_unit(Dimension dim);
+
 /// A value in internal units as text that parse_quantity reads back exactly: "0.65 mm".
 std::string format_quantity(double internal_value, Dimension dim);
 

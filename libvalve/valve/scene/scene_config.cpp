@@ -45,15 +45,20 @@ void parse_bdf2(JsonReader& r, Bdf2Options& o) {
   o.iterative_max_iterations = r.integer("iterative_max_iterations", o.iterative_max_iterations, 1, 10000000);
 }
 
+// trust_radius: a length, or absent for the solver's default, which `default_description` names.
+void parse_trust_radius(JsonReader& r, double& trust_radius, const std::string& default_description) {
+  if (r.has("trust_radius")) trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
+  else r.record("trust_radius", default_description);
+  r.document("trust_radius", to_string(Dimension::length), default_description);
+}
+
 void parse_static(JsonReader& r, StaticOptions& o) {
   o.relative_residual_tolerance = r.number("relative_residual_tolerance", o.relative_residual_tolerance, 1e-16, 1.0);
   o.max_newton_iterations = r.integer("max_newton_iterations", o.max_newton_iterations, 1, 10000000);
   o.initial_increment = r.number("initial_increment", o.initial_increment, 1e-9, 1.0);
   o.initial_pseudo_step = r.number("initial_pseudo_step_ms2", o.initial_pseudo_step, 1e-20, 1e20);
   o.max_strain_increment = r.number("max_strain_increment", o.max_strain_increment, 0.0, 10.0);
-  if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
-  else r.record("trust_radius", "2.5% of the bounding-box diagonal");
-  r.document("trust_radius", to_string(Dimension::length), "2.5% of the bounding-box diagonal");
+  parse_trust_radius(r, o.trust_radius, "2.5% of the bounding-box diagonal");
   o.min_increment = r.number("min_increment", o.min_increment, 1e-15, 1.0);
   o.max_increments = r.integer("max_increments", o.max_increments, 1, 100000000);
   o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
@@ -73,9 +78,7 @@ void parse_quasistatic(JsonReader& r, QuasistaticOptions& o) {
                              std::string(o.proximal_rule == ProximalStepRule::gain ? "gain" : "step")) == "gain"
                         ? ProximalStepRule::gain
                         : ProximalStepRule::step;
-  if (r.has("trust_radius")) o.trust_radius = r.quantity("trust_radius", Dimension::length, std::nullopt, 1e-12, 1e12);
-  else r.record("trust_radius", "5% of the bounding-box diagonal");
-  r.document("trust_radius", to_string(Dimension::length), "5% of the bounding-box diagonal");
+  parse_trust_radius(r, o.trust_radius, "5% of the bounding-box diagonal");
   o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
   o.linear_solver = parse_linear_solver(r.choice("linear_solver", linear_solver_names(), std::string("auto")));
   o.iterative_tolerance = r.number("iterative_tolerance", o.iterative_tolerance, 1e-16, 1e-1);

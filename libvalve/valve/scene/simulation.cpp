@@ -328,8 +328,9 @@ TriMesh perturb_start_positions(const TriMesh& mesh, const std::vector<char>& co
 
 SimulationResult simulate(const SceneConfig& sc, const TriMesh& unperturbed_mesh, MechanicalSystem& sys,
                           const SimulationHooks& hooks) {
-  const TriMesh input_mesh = sc.perturbation ? perturb_start_positions(unperturbed_mesh, sys.constrained(), *sc.perturbation)
-                                             : unperturbed_mesh;
+  std::optional<TriMesh> perturbed;
+  if (sc.perturbation) perturbed = perturb_start_positions(unperturbed_mesh, sys.constrained(), *sc.perturbation);
+  const TriMesh& input_mesh = perturbed ? *perturbed : unperturbed_mesh;
   std::optional<RootDistension> root;
   TriMesh distended;
   if (sc.aortic_root) {
