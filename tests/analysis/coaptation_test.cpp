@@ -404,14 +404,25 @@ TEST_CASE("coaptation: free-edge distance to a given axis", "[analysis][coaptati
   CHECK(analyze_coaptation(m, x).max_free_edge_axis_distance_mm == -1);  // no axis, no measure
   CHECK(analyze_coaptation(m, x).leaflets[0].free_edge_axis_distance_mm == -1);
 
-  // Vertical axis through (5, 13): the lower edge's node at x = 5 lies 3 mm from it, the
-  // upper edge's nearest nodes (x = 4.75, 5.25) sqrt(0.25² + 3²) mm. A non-unit direction.
+  // Vertical axis through (5, 13): both free edges (the straight lines y = 10) pass 3 mm from
+  // it, the upper one between its nodes at x = 4.75 and 5.25 (which lie sqrt(0.25² + 3²) mm
+  // away). A non-unit direction.
   CoaptationOptions vertical;
   vertical.axis = ValveAxis{Vec3(5, 13, 7), Vec3(0, 0, 2)};
   const CoaptationResult r = analyze_coaptation(m, x, vertical);
   CHECK(r.leaflets[0].free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));
-  CHECK(r.leaflets[1].free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
-  CHECK(r.max_free_edge_axis_distance_mm == Approx(std::hypot(0.25, 3.0)).margin(1e-12));
+  CHECK(r.leaflets[1].free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));
+  CHECK(r.max_free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));
+  // An axis beyond the free edge's end (x = 12, y = 13): the end node (10, 10) is nearest.
+  CoaptationOptions beyond;
+  beyond.axis = ValveAxis{Vec3(12, 13, 0), Vec3(0, 0, 1)};
+  CHECK(analyze_coaptation(m, x, beyond).leaflets[0].free_edge_axis_distance_mm ==
+        Approx(std::hypot(2.0, 3.0)).margin(1e-12));
+  // A tilted axis: only the part of each point normal to it counts. Along (1, 0, 0) through
+  // (0, 13, kLip) the whole lower free edge lies 3 mm away.
+  CoaptationOptions along;
+  along.axis = ValveAxis{Vec3(0, 13, kLip), Vec3(1, 0, 0)};
+  CHECK(analyze_coaptation(m, x, along).leaflets[0].free_edge_axis_distance_mm == Approx(3.0).margin(1e-12));
   CHECK(r.report().find("mm from the axis") != std::string::npos);
   // The axis lies beside the sheets: no cross-section to measure an orifice in. Through
   // them, the lower sheet covers its whole square: no opening.

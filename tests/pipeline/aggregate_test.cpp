@@ -188,7 +188,7 @@ TEST_CASE("aggregate: validation errors name the key path", "[pipeline]") {
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": "model", "stats": {"err": ["mean"]}}])")),
              Catch::Contains("aggregate[0].group_by: expected a list of column names, found string"));
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": ["model", "model"], "stats": {"err": ["mean"]}}])")),
-             Catch::Contains("aggregate[0].group_by[1]: expected a column not grouped by before, found \"model\""));
+             Catch::Contains("aggregate[0].group_by[1]: expected a column not named before in group_by, found \"model\""));
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": []}])")),
              Catch::Contains("aggregate[0].stats: expected an object of column: list of stats, found nothing"));
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": [], "stats": {}}])")),
@@ -208,7 +208,7 @@ TEST_CASE("aggregate: validation errors name the key path", "[pipeline]") {
   CHECK_THAT(message_of(with_aggregate(R"(["s.csv"])")), Catch::Contains("aggregate[0]: expected an object with csv, from, group_by and stats"));
   // Plots name an aggregate table only when there is one.
   CHECK(message_of(with_aggregate("[" + a + "]", R"(, "plots": [{"png": "p.png", "csv": "u.csv", "gnuplot": "plot 1"}])")) ==
-        "P.json: plots[0].csv: expected one of the gather or aggregate tables (biaxial.csv, s.csv), found \"u.csv\"");
+        "P.json: plots[0].csv: expected one of the gather, aggregate or select tables (biaxial.csv, s.csv), found \"u.csv\"");
 }
 
 TEST_CASE("gather: entries sharing a csv are concatenated, their columns must match", "[pipeline]") {

@@ -128,6 +128,45 @@ TEST_CASE("gather: file: columns join another JSON file of the same run", "[pipe
                     Catch::Contains("nope"));
 }
 
+TEST_CASE("gather: min and max columns take the extreme of several sources, empty when one is missing", "[pipeline]") {
+  TempDir tmp("gather_extreme");
+  const auto spec = parse_pipeline(ojson::parse(R"({
+    "variables": {"run": [1, 2, 3]},
+    "steps": [{"stage": "valve-simulate", "args": []}],
+    "gather": [
+      {"csv": "h.csv", "summary": "s.json",
+       "columns": {"run": "${run}",
+                   "native_min": {"min": ["summary:h.1", "summary:h.2"]},
+                   "widest": {"max": ["summary:h.1", "summary:h.2", "file:other.json:w"]}}}
+    ]})"),
+                                     "P.json", tmp.path());
+  const fs::path out = tmp.path() / "out";
+  const auto runs = expand_runs(spec, out);
+  write_text(runs[0].run_dir / "s.json", R"({"h": [9, 1.25, 3]})");
+  write_text(runs[0].run_dir / "other.json", R"({"w": 7})");
+  write_text(runs[1].run_dir / "s.json", R"({"h": [9, -0.5, 2e-3]})");
+  write_text(runs[1].run_dir / "other.json", R"({"w": "wide"})");                  // not a number
+  write_text(runs[2].run_dir / "s.json", R"({"h": [9, 4]})");                      // h.2 missing
+  const CsvTable t = gather_table(spec, spec.gather[0], runs, out);
+  REQUIRE(t.rows.size() == 3);
+  CHECK(t.rows[0] == std::vector<std::string>{"1", "1.25", "7"});
+  CHECK(t.rows[1] == std::vector<std::string>{"2", "-0.5", ""});
+  CHECK(t.rows[2] == std::vector<std::string>{"3", "", ""});
+
+  auto parse = [&](const std::string& columns) {
+    return parse_pipeline(ojson::parse(R"({"steps": [{"stage": "valve-x", "args": []}],
+      "gather": [{"csv": "a.csv", "summary": "s.json", "columns": )" + columns + "}]}"), "P.json", tmp.path());
+  };
+  CHECK_THROWS_WITH(parse(R"({"m": {"min": ["summary:a"]}})"),
+                    Catch::Contains("gather[0].columns.m.min: expected a list of two or more"));
+  CHECK_THROWS_WITH(parse(R"({"m": {"max": ["summary:a", "3"]}})"),
+                    Catch::Contains("gather[0].columns.m.max[1]: expected a summary:, row: or file: source, found \"3\""));
+  CHECK_THROWS_WITH(parse(R"({"m": {"mean": ["summary:a", "summary:b"]}})"),
+                    Catch::Contains("gather[0].columns.m: expected a string") && Catch::Contains("{\"min\" or \"max\""));
+  CHECK_THROWS_WITH(parse(R"({"m": {"min": ["sumary:a", "summary:b"]}})"),
+                    Catch::Contains("gather[0].columns.m.min[0]: expected the source summary:"));
+}
+
 TEST_CASE("plots: script with terminal, separator and output, skipped without gnuplot", "[pipeline]") {
   TempDir tmp("plot");
   auto spec_with = [&](const std::string& gnuplot) {

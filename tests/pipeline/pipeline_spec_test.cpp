@@ -145,7 +145,7 @@ TEST_CASE("placeholder errors name the key path before anything runs", "[pipelin
 
 TEST_CASE("structural errors: keys, steps, variables, zip, gather, plots", "[pipeline]") {
   CHECK(message_of(R"({"stepz": []})") ==
-        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, shared_steps, steps, gather, aggregate, plots), found an unknown key");
+        "P.json: stepz: expected a known key (name, description, requires, variables, sweep, shared_steps, steps, gather, aggregate, select, plots), found an unknown key");
   CHECK_THAT(message_of(R"({"name": "x"})"), Catch::Contains("steps: expected a list of steps, found nothing"));
   CHECK_THAT(message_of(R"({"steps": []})"), Catch::Contains("steps: expected a non-empty list of steps"));
   CHECK_THAT(message_of(R"({"steps": [{"args": []}]})"), Catch::Contains("steps[0].stage: expected a string, found nothing"));
@@ -180,7 +180,7 @@ TEST_CASE("structural errors: keys, steps, variables, zip, gather, plots", "[pip
                Catch::Contains("gather[0].csv: expected a relative file path inside the output folder"));
   const std::string ok_gather = R"(, "gather": [{"csv": "t.csv", "summary": "s.json", "columns": {"c": "summary:status"}}])";
   CHECK_THAT(message_of(with_variables(R"({"a": [1]})", "[]", ok_gather + R"(, "plots": [{"png": "p.png", "csv": "u.csv", "gnuplot": "plot 1"}])")),
-             Catch::Contains("plots[0].csv: expected one of the gather or aggregate tables (t.csv)"));
+             Catch::Contains("plots[0].csv: expected one of the gather, aggregate or select tables (t.csv)"));
   CHECK_THAT(message_of(with_variables(R"({"a": [1]})", "[]", ok_gather + R"(, "plots": [{"png": "p.png", "csv": "t.csv", "gnuplot": "set out 'x.png'; plot 1"}])")),
              Catch::Contains("plots[0].gnuplot: expected a script without set output"));
   CHECK_THAT(message_of(with_variables(R"({"a": [1]})", "[]", ok_gather + R"(, "plots": [{"png": "p.png", "csv": "t.csv", "gnuplot": "plot '${a}'"}])")),

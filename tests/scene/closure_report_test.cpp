@@ -80,8 +80,15 @@ TEST_CASE("A three-leaflet closure (static, no contact) reports its run, each le
   REQUIRE(a.leaflets.size() == 3);
   // The seed's leaflets: a free edge of 20 mm at rest (the semicircle's diameter), stretched
   // by the pressure.
+  double mesh_area = 0, leaflet_areas = 0;
+  for (const auto& t : mesh.triangles) mesh_area += triangle_area(mesh.points, t);
   for (const auto& l : a.leaflets) {
     CHECK(l["free_edge_rest_mm"].get<double>() == Approx(20).epsilon(0.02));
     CHECK(l["free_edge_mm"].get<double>() > l["free_edge_rest_mm"].get<double>());
+    // Three copies of one leaflet: a third of the mesh's rest area each, up to the mesher's
+    // random triangulation of the same outline.
+    CHECK(l["rest_area_mm2"].get<double>() == Approx(mesh_area / 3).epsilon(0.01));
+    leaflet_areas += l["rest_area_mm2"].get<double>();
   }
+  CHECK(leaflet_areas == Approx(mesh_area).epsilon(1e-12));
 }

@@ -315,10 +315,19 @@ CoaptationResult analyze_coaptation(const TriMesh& m, const VecX& x, const Coapt
       lc.min_height_mm = min_height;
       if (opt.axis) {
         const Vec3 u = opt.axis->unit_direction();
-        double nearest = kInf;
-        for (int v : lc.free_edge) {
+        // Closest approach of each free-edge segment to the axis: with q(t) the part of
+        // a + t (b - a) - axis point normal to the axis, |q(t)| is smallest at
+        // t = clamp(-q(0)·(q(1) - q(0)) / |q(1) - q(0)|², 0, 1).
+        auto normal_part = [&](int v) {
           const Vec3 d = node3(x, v) - opt.axis->point;
-          nearest = std::min(nearest, (d - u * u.dot(d)).norm());
+          return Vec3(d - u * u.dot(d));
+        };
+        double nearest = normal_part(lc.free_edge.front()).norm();
+        for (std::size_t k = 1; k < lc.free_edge.size(); ++k) {
+          const Vec3 q0 = normal_part(lc.free_edge[k - 1]), e = normal_part(lc.free_edge[k]) - q0;
+          const double ee = e.squaredNorm();
+          const double t = ee > 0 ? std::clamp(-q0.dot(e) / ee, 0.0, 1.0) : 0.0;
+          nearest = std::min(nearest, (q0 + t * e).norm());
         }
         lc.free_edge_axis_distance_mm = nearest;
       }

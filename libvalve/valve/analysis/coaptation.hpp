@@ -54,9 +54,9 @@
 // Reach of the free edges (given the valve axis). In a sealed three-leaflet valve the free
 // edges meet on the axis; a free edge that stops short of it leaves a hole at the centre,
 // whatever the bands beside it do (the projected orifice, orifice.hpp, measures that hole's
-// area). free_edge_axis_distance_mm is the smallest distance from
-// a leaflet's deformed free-edge nodes to the axis (a node sampling, so within half a
-// free-edge segment of the polyline's own closest approach). Why a separate measure: the
+// area). free_edge_axis_distance_mm is the closest approach of a leaflet's deformed free
+// edge (the polyline of its nodes) to the axis; the nodes alone would read up to half a
+// free-edge segment (about 1 mm on the 666-triangle valve) too far. Why a separate measure: the
 // heights say where a band is broken, not how far the leaflet is from closing the hole, which
 // is what changes between repairs and between solver settings.
 //
@@ -138,8 +138,8 @@ struct LeafletCoaptation {
   /// Rest length of the free-edge segments whose two end nodes coapt, over the rest length
   /// of the free edge (0 without free edge).
   double coapting_fraction_of_free_edge = 0;
-  /// Smallest distance of the deformed free-edge nodes to the valve axis; -1 without an axis
-  /// or a free edge.
+  /// Closest approach of the deformed free-edge polyline to the valve axis; -1 without an
+  /// axis or a free edge.
   double free_edge_axis_distance_mm = -1;
   bool closed = false;  // min_height_mm >= closed_min_height_mm
 };

@@ -15,13 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-size_t column_index(const CsvTable& table, const std::string& column, const AggregateSpec& aggregate) {
-  const auto it = std::find(table.header.begin(), table.header.end(), column);
-  if (it == table.header.end())
-    throw Error(aggregate.key + ": the table " + aggregate.from + " has no column " + column);
-  return static_cast<size_t>(it - table.header.begin());
-}
-
 std::string number_cell(double x) {
   // Integral values exactly (counts, min/max of integer columns); the rest like gather cells.
   char buf[40];
@@ -32,7 +25,33 @@ std::string number_cell(double x) {
   return buf;
 }
 
+std::string cell_of(const std::vector<std::string>& row, size_t c) { return c < row.size() ? row[c] : std::string(); }
+
 }  // namespace
+
+size_t table_column(const CsvTable& table, const std::string& column, const std::string& key, const std::string& from) {
+  const auto it = std::find(table.header.begin(), table.header.end(), column);
+  if (it == table.header.end()) throw Error(key + ": the table " + from + " has no column " + column);
+  return static_cast<size_t>(it - table.header.begin());
+}
+
+RowGrouping::RowGrouping(const CsvTable& table, const std::vector<AggregateFilter>& where,
+                         const std::vector<std::string>& group_by, const std::string& key, const std::string& from) {
+  for (const auto& f : where) filters_.emplace_back(table_column(table, f.column, key, from), &f);
+  for (const auto& g : group_by) keys_.push_back(table_column(table, g, key, from));
+}
+
+bool RowGrouping::kept(const std::vector<std::string>& row) const {
+  return std::all_of(filters_.begin(), filters_.end(), [&](const auto& f) {
+    return std::find(f.second->values.begin(), f.second->values.end(), cell_of(row, f.first)) != f.second->values.end();
+  });
+}
+
+std::vector<std::string> RowGrouping::group(const std::vector<std::string>& row) const {
+  std::vector<std::string> key;
+  for (size_t c : keys_) key.push_back(cell_of(row, c));
+  return key;
+}
 
 std::optional<double> numeric_cell(const std::string& text) {
   const char* begin = text.data();
@@ -74,12 +93,9 @@ std::string stat_cell(const std::string& stat, std::vector<double> values) {
 }
 
 CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
-  std::vector<std::pair<size_t, const AggregateFilter*>> filters;
-  for (const auto& f : aggregate.where) filters.emplace_back(column_index(from, f.column, aggregate), &f);
-  std::vector<size_t> keys;
-  for (const auto& g : aggregate.group_by) keys.push_back(column_index(from, g, aggregate));
+  const RowGrouping grouping(from, aggregate.where, aggregate.group_by, aggregate.key, aggregate.from);
   std::vector<size_t> value_columns;
-  for (const auto& s : aggregate.stats) value_columns.push_back(column_index(from, s.column, aggregate));
+  for (const auto& s : aggregate.stats) value_columns.push_back(table_column(from, s.column, aggregate.key, aggregate.from));
 
   // Per group (in order of first appearance): the numeric values of each stats column.
   std::vector<std::vector<std::string>> group_keys;
@@ -94,20 +110,13 @@ CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
     return it->second;
   };
   // No group_by: the whole table is one group, present even when no row passes (count 0).
-  if (keys.empty()) group_for({});
+  if (!grouping.grouped()) group_for({});
 
   for (const auto& row : from.rows) {
-    // A short row (never written by gather) reads as empty cells.
-    auto cell = [&row](size_t c) { return c < row.size() ? row[c] : std::string(); };
-    const bool kept = std::all_of(filters.begin(), filters.end(), [&](const auto& f) {
-      return std::find(f.second->values.begin(), f.second->values.end(), cell(f.first)) != f.second->values.end();
-    });
-    if (!kept) continue;
-    std::vector<std::string> key;
-    for (size_t c : keys) key.push_back(cell(c));
-    const size_t g = group_for(key);
+    if (!grouping.kept(row)) continue;
+    const size_t g = group_for(grouping.group(row));
     for (size_t v = 0; v < value_columns.size(); ++v)
-      if (const auto x = numeric_cell(cell(value_columns[v]))) group_values[g][v].push_back(*x);
+      if (const auto x = numeric_cell(cell_of(row, value_columns[v]))) group_values[g][v].push_back(*x);
   }
 
   CsvTable table;

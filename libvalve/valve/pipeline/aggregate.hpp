@@ -21,6 +21,26 @@ std::optional<double> numeric_cell(const std::string& text);
 /// with %.10g. `values` need not be sorted.
 std::string stat_cell(const std::string& stat, std::vector<double> values);
 
+/// The "where" filters and group_by columns of an aggregate or select entry, found in a
+/// table's header (an Error naming `key` when one is missing). A short row (never written
+/// by gather) reads as empty cells.
+class RowGrouping {
+ public:
+  RowGrouping(const CsvTable& table, const std::vector<AggregateFilter>& where,
+              const std::vector<std::string>& group_by, const std::string& key, const std::string& from);
+  bool kept(const std::vector<std::string>& row) const;               ///< passes every filter
+  std::vector<std::string> group(const std::vector<std::string>& row) const;  ///< its group_by cells
+  bool grouped() const { return !keys_.empty(); }
+  const std::vector<size_t>& key_columns() const { return keys_; }
+
+ private:
+  std::vector<std::pair<size_t, const AggregateFilter*>> filters_;
+  std::vector<size_t> keys_;
+};
+
+/// Index of `column` in the table's header; an Error naming `key` and `from` when absent.
+size_t table_column(const CsvTable& table, const std::string& column, const std::string& key, const std::string& from);
+
 /// The aggregate table of `from` (whose header must hold every column the spec names,
 /// which parse_pipeline has checked; an Error otherwise).
 CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from);

@@ -6,10 +6,13 @@
 #include <map>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <optional>
 #include <regex>
 
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/error.hpp"
+#include "valve/pipeline/aggregate.hpp"
 #include "valve/pipeline/process.hpp"
 
 namespace valve {
@@ -103,23 +106,34 @@ CsvTable gather_table(const PipelineSpec& spec, const GatherSpec& gather, const 
       }
     }
     for (const ojson* element : elements) {
-      std::vector<std::string> row;
-      for (const auto& c : gather.columns) {
+      std::function<std::string(const ColumnSpec&)> cell = [&](const ColumnSpec& c) -> std::string {
         switch (c.source) {
           case ColumnSpec::Source::literal:
-            row.push_back(substitute(c.text, b, spec.file, gather.key + ".columns." + c.header));
-            break;
+            return substitute(c.text, b, spec.file, gather.key + ".columns." + c.header);
           case ColumnSpec::Source::summary:
-            row.push_back(cell_text(find_path(summary, c.text)));
-            break;
+            return cell_text(find_path(summary, c.text));
           case ColumnSpec::Source::row:
-            row.push_back(cell_text(element ? find_path(*element, c.text) : nullptr));
-            break;
+            return cell_text(element ? find_path(*element, c.text) : nullptr);
           case ColumnSpec::Source::file:
-            row.push_back(cell_text(file_value(c)));
-            break;
+            return cell_text(file_value(c));
+          case ColumnSpec::Source::min:
+          case ColumnSpec::Source::max: {
+            // Every part must be a number: the extreme of what happens to be present would
+            // pass a run that lost one of its measures for a run that measured it.
+            std::optional<double> extreme;
+            for (const auto& part : c.parts) {
+              const auto x = numeric_cell(cell(part));
+              if (!x) return "";
+              if (!extreme || (c.source == ColumnSpec::Source::min ? *x < *extreme : *x > *extreme)) extreme = x;
+            }
+            const ojson value = *extreme;
+            return cell_text(&value);
+          }
         }
-      }
+        return "";
+      };
+      std::vector<std::string> row;
+      for (const auto& c : gather.columns) row.push_back(cell(c));
       table.rows.push_back(row);
     }
   }

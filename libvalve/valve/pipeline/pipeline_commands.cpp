@@ -153,6 +153,7 @@ int list_pipeline(const PipelineSpec& spec, const CommandLine& cl, std::ostream&
   for (const auto& run : runs) print_run(run, spec.shared_steps, "run " + run.run_id);
   for (const auto& g : spec.gather)
     out << "gather " << show((normalized_dir(out_dir) / g.csv).string()) << " from runs/*/" << g.summary << "\n";
+  for (const auto& e : spec.selects) out << "select " << show((normalized_dir(out_dir) / e.csv).string()) << " from " << e.from << "\n";
   for (const auto& p : spec.plots) out << "plot " << show((normalized_dir(out_dir) / p.png).string()) << " from " << p.csv << "\n";
   return 0;
 }
@@ -204,8 +205,10 @@ int write_pipeline_tables(const PipelineSpec& spec, const RunnerOptions& options
   write_tables(spec, runs, out_dir, result);
   size_t failed = 0;
   for (const auto& p : result.plots) failed += p.status == "failed" ? 1 : 0;
-  if (!options.quiet)
+  if (!options.quiet) {
     for (const auto& t : result.tables) out << "valve-pipeline: wrote " << t.path.string() << " (" << t.rows << " rows)\n";
+    for (const auto& e : result.selects) out << "valve-pipeline: " << e.line << "\n";
+  }
   return failed ? 3 : 0;
 }
 
@@ -219,8 +222,10 @@ std::string pipeline_outcome_line(const PipelineOutcome& outcome) {
   std::string made;
   for (const auto& t : outcome.tables) made += "; wrote " + t.path.filename().string() + " (" + std::to_string(t.rows) + " rows)";
   for (const auto& p : outcome.plots) made += "; plot " + p.png + " " + p.status;
+  std::string choices;
+  for (const auto& e : outcome.selects) choices += "\nvalve-pipeline: " + e.line;
   return "valve-pipeline: " + std::to_string(ok) + "/" + std::to_string(outcome.runs.size()) + " runs ok, " +
-         std::to_string(cached) + " step(s) cached" + made;
+         std::to_string(cached) + " step(s) cached" + made + choices;
 }
 
 }  // namespace valve

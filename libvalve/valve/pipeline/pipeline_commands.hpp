@@ -46,7 +46,7 @@ int stamp_pipeline_step(const PipelineSpec& spec, const CommandLine& cl);
 int write_pipeline_tables(const PipelineSpec& spec, const RunnerOptions& options, std::ostream& out);
 
 /// `run`'s closing line: "valve-pipeline: <ok>/<runs> runs ok, <n> step(s) cached" and each
-/// table and plot written.
+/// table and plot written; then one line per select entry, its choices in words.
 std::string pipeline_outcome_line(const PipelineOutcome& outcome);
 
 }  // namespace valve

@@ -1,6 +1,7 @@
 #include "valve/pipeline/pipeline_spec.hpp"
 
 #include <algorithm>
+#include <functional>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -371,6 +372,41 @@ size_t edit_distance(const std::string& a, const std::string& b) {
   return row[b.size()];
 }
 
+/// A column given as a string: a literal with placeholders, or a summary:, row: or file: source.
+ColumnSpec parse_column_text(const std::string& header, const std::string& text, const GatherSpec& spec,
+                             const std::vector<SweepVariable>& variables, const std::string& file,
+                             const std::string& key) {
+  ColumnSpec col{header, ColumnSpec::Source::literal, text, {}, {}};
+  if (text.rfind("summary:", 0) == 0) {
+    col.source = ColumnSpec::Source::summary;
+    col.text = text.substr(8);
+  } else if (text.rfind("file:", 0) == 0) {
+    const size_t colon = text.find(':', 5);
+    if (colon == std::string::npos || colon == 5 || colon + 1 == text.size())
+      fail(file, key, "\"file:<json file in the run folder>:<path>\"", "\"" + text + "\"");
+    col.source = ColumnSpec::Source::file;
+    col.file = text.substr(5, colon - 5);
+    col.text = text.substr(colon + 1);
+    check_placeholders(col.file, run_builtins, variables, file, key);
+  } else if (text.rfind("row:", 0) == 0) {
+    if (spec.rows.empty()) fail(file, key, "a \"rows\" path in " + spec.key + " for a row: column", "\"" + text + "\"");
+    col.source = ColumnSpec::Source::row;
+    col.text = text.substr(4);
+  } else {
+    // "sumary:status" would otherwise fill the column with its own text on every row; a
+    // literal such as "fe:ray" or "http://..." is not near any source's name.
+    const size_t colon = text.find(':');
+    if (colon != std::string::npos && colon > 0 && colon + 1 < text.size()) {
+      const std::string prefix = text.substr(0, colon);
+      for (const std::string known : {"summary", "file", "row"})
+        if (edit_distance(prefix, known) <= (known.size() >= 6 ? 2u : 1u))
+          fail(file, key, "the source " + known + ": (or literal text)", "\"" + prefix + ":\"");
+    }
+    check_placeholders(text, run_builtins, variables, file, key);
+  }
+  return col;
+}
+
 GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariable>& variables,
                         const std::string& file) {
   GatherSpec spec;
@@ -387,37 +423,30 @@ GatherSpec parse_gather(const ojson& g, size_t i, const std::vector<SweepVariabl
   if (!cols.is_object() || cols.empty()) fail(file, ckey, "a non-empty object of column specs", describe(cols));
   for (auto it = cols.begin(); it != cols.end(); ++it) {
     const std::string key = ckey + "." + it.key();
-    if (!it.value().is_string())
-      fail(file, key, "a string: text with ${...}, \"summary:<path>\", \"row:<path>\" or \"file:<file>:<path>\"",
-           describe(it.value()));
-    const std::string text = it.value().get<std::string>();
-    ColumnSpec col{it.key(), ColumnSpec::Source::literal, text};
-    if (text.rfind("summary:", 0) == 0) {
-      col.source = ColumnSpec::Source::summary;
-      col.text = text.substr(8);
-    } else if (text.rfind("file:", 0) == 0) {
-      const size_t colon = text.find(':', 5);
-      if (colon == std::string::npos || colon == 5 || colon + 1 == text.size())
-        fail(file, key, "\"file:<json file in the run folder>:<path>\"", "\"" + text + "\"");
-      col.source = ColumnSpec::Source::file;
-      col.file = text.substr(5, colon - 5);
-      col.text = text.substr(colon + 1);
-      check_placeholders(col.file, run_builtins, variables, file, key);
-    } else if (text.rfind("row:", 0) == 0) {
-      if (spec.rows.empty()) fail(file, key, "a \"rows\" path in " + spec.key + " for a row: column", "\"" + text + "\"");
-      col.source = ColumnSpec::Source::row;
-      col.text = text.substr(4);
-    } else {
-      // "sumary:status" would otherwise fill the column with its own text on every row; a
-      // literal such as "fe:ray" or "http://..." is not near any source's name.
-      const size_t colon = text.find(':');
-      if (colon != std::string::npos && colon > 0 && colon + 1 < text.size()) {
-        const std::string prefix = text.substr(0, colon);
-        for (const std::string known : {"summary", "file", "row"})
-          if (edit_distance(prefix, known) <= (known.size() >= 6 ? 2u : 1u))
-            fail(file, key, "the source " + known + ": (or literal text)", "\"" + prefix + ":\"");
-      }
-      check_placeholders(text, run_builtins, variables, file, key);
+    const ojson& value = it.value();
+    const char* expected =
+        "a string (text with ${...}, \"summary:<path>\", \"row:<path>\" or \"file:<file>:<path>\") or "
+        "{\"min\" or \"max\": [sources]}";
+    if (value.is_string()) {
+      spec.columns.push_back(parse_column_text(it.key(), value.get<std::string>(), spec, variables, file, key));
+      continue;
+    }
+    if (!value.is_object() || value.size() != 1 || !(value.contains("min") || value.contains("max")))
+      fail(file, key, expected, describe(value));
+    const bool is_min = value.contains("min");
+    const std::string rkey = key + (is_min ? ".min" : ".max");
+    const ojson& list = value.begin().value();
+    if (!list.is_array() || list.size() < 2)
+      fail(file, rkey, "a list of two or more summary:, row: or file: sources", describe(list));
+    ColumnSpec col{it.key(), is_min ? ColumnSpec::Source::min : ColumnSpec::Source::max, "", {}, {}};
+    for (size_t k = 0; k < list.size(); ++k) {
+      const std::string pkey = rkey + "[" + std::to_string(k) + "]";
+      if (!list[k].is_string()) fail(file, pkey, "a summary:, row: or file: source", describe(list[k]));
+      ColumnSpec part = parse_column_text(it.key(), list[k].get<std::string>(), spec, variables, file, pkey);
+      // A literal among numbers compared would be a constant bound, most likely a misspelt source.
+      if (part.source == ColumnSpec::Source::literal)
+        fail(file, pkey, "a summary:, row: or file: source", "\"" + list[k].get<std::string>() + "\"");
+      col.parts.push_back(std::move(part));
     }
     spec.columns.push_back(col);
   }
@@ -451,6 +480,73 @@ std::vector<std::string> string_list(const ojson& obj, const std::string& k, boo
 /// parsed so far, in order.
 using KnownTables = std::vector<std::pair<std::string, std::vector<std::string>>>;
 
+/// The columns of the table `name` (an InputError at key.from when it is not known).
+const std::vector<std::string>& known_table(const KnownTables& tables, const std::string& name, const std::string& key,
+                                            const std::string& file) {
+  const auto table = std::find_if(tables.begin(), tables.end(), [&](const auto& t) { return t.first == name; });
+  if (table == tables.end()) {
+    std::vector<std::string> names;
+    for (const auto& t : tables) names.push_back(t.first);
+    fail(file, key + ".from",
+         "a gather table or an earlier aggregate table (" + (names.empty() ? std::string("none") : join(names, ", ")) + ")",
+         "\"" + name + "\"");
+  }
+  return table->second;
+}
+
+using ColumnCheck = std::function<void(const std::string& name, const std::string& key)>;
+
+/// Fails at `key` when `name` is not a column of the table `from`. Checked when the file is
+/// read, not when the table is: a misspelt column would otherwise give an empty statistic
+/// after the whole sweep has run.
+ColumnCheck column_check(const std::vector<std::string>& columns, const std::string& from, const std::string& file) {
+  return [&columns, from, file](const std::string& name, const std::string& key) {
+    if (std::find(columns.begin(), columns.end(), name) == columns.end())
+      fail(file, key, "a column of " + from + " (" + join(columns, ", ") + ")", "\"" + name + "\"");
+  };
+}
+
+/// The "where" filters of an aggregate or select entry at `path` (none without the key).
+std::vector<AggregateFilter> parse_where(const ojson& a, const std::string& path, const ColumnCheck& check_column,
+                                         const std::string& file) {
+  std::vector<AggregateFilter> where;
+  if (!a.contains("where")) return where;
+  const ojson& w = a["where"];
+  const std::string wkey = path + ".where";
+  if (!w.is_object()) fail(file, wkey, "an object of column: list of values", describe(w));
+  for (auto it = w.begin(); it != w.end(); ++it) {
+    const std::string key = wkey + "." + it.key();
+    check_column(it.key(), key);
+    const ojson& values = it.value();
+    if (!values.is_array() || values.empty()) fail(file, key, "a non-empty list of values", describe(values));
+    AggregateFilter filter{it.key(), {}};
+    for (size_t k = 0; k < values.size(); ++k) {
+      const ojson& e = values[k];
+      if (e.is_number_float() && !std::isfinite(e.get<double>()))
+        fail(file, key + "[" + std::to_string(k) + "]", "a finite number", describe(e));
+      if (!(e.is_string() || e.is_number() || e.is_boolean()))
+        fail(file, key + "[" + std::to_string(k) + "]", "a string, number or boolean", describe(e));
+      filter.values.push_back(value_text(e));  // 45.0 -> "45", as the cell text is written
+    }
+    where.push_back(filter);
+  }
+  return where;
+}
+
+/// A list of distinct columns of the table at obj[k] (group_by, minimize, agree_on).
+std::vector<std::string> distinct_columns(const ojson& obj, const std::string& k, bool allow_empty,
+                                          const std::string& path, const ColumnCheck& check_column,
+                                          const std::string& file) {
+  std::vector<std::string> list = string_list(obj, k, allow_empty, file, path);
+  for (size_t i = 0; i < list.size(); ++i) {
+    const std::string key = path + "." + k + "[" + std::to_string(i) + "]";
+    check_column(list[i], key);
+    if (std::find(list.begin(), list.begin() + static_cast<long>(i), list[i]) != list.begin() + static_cast<long>(i))
+      fail(file, key, "a column not named before in " + k, "\"" + list[i] + "\"");
+  }
+  return list;
+}
+
 AggregateSpec parse_aggregate(const ojson& a, size_t i, const KnownTables& tables, const PipelineSpec& spec,
                               const std::string& file) {
   AggregateSpec agg;
@@ -468,52 +564,11 @@ AggregateSpec parse_aggregate(const ojson& a, size_t i, const KnownTables& table
            "\"" + agg.csv + "\" (also " + other.key + ")");
 
   agg.from = inside_path(a, "from", file, agg.key);
-  const auto table = std::find_if(tables.begin(), tables.end(), [&](const auto& t) { return t.first == agg.from; });
-  if (table == tables.end()) {
-    std::vector<std::string> names;
-    for (const auto& t : tables) names.push_back(t.first);
-    fail(file, agg.key + ".from",
-         "a gather table or an earlier aggregate table (" + (names.empty() ? std::string("none") : join(names, ", ")) + ")",
-         "\"" + agg.from + "\"");
-  }
-  const std::vector<std::string>& columns = table->second;
-  // Checked here, not when the table is read: a misspelt column would otherwise give an
-  // empty statistic after the whole sweep has run.
-  auto check_column = [&](const std::string& name, const std::string& key) {
-    if (std::find(columns.begin(), columns.end(), name) == columns.end())
-      fail(file, key, "a column of " + agg.from + " (" + join(columns, ", ") + ")", "\"" + name + "\"");
-  };
+  const std::vector<std::string>& columns = known_table(tables, agg.from, agg.key, file);
+  const ColumnCheck check_column = column_check(columns, agg.from, file);
 
-  if (a.contains("where")) {
-    const ojson& w = a["where"];
-    const std::string wkey = agg.key + ".where";
-    if (!w.is_object()) fail(file, wkey, "an object of column: list of values", describe(w));
-    for (auto it = w.begin(); it != w.end(); ++it) {
-      const std::string key = wkey + "." + it.key();
-      check_column(it.key(), key);
-      const ojson& values = it.value();
-      if (!values.is_array() || values.empty()) fail(file, key, "a non-empty list of values", describe(values));
-      AggregateFilter filter{it.key(), {}};
-      for (size_t k = 0; k < values.size(); ++k) {
-        const ojson& e = values[k];
-        if (e.is_number_float() && !std::isfinite(e.get<double>()))
-          fail(file, key + "[" + std::to_string(k) + "]", "a finite number", describe(e));
-        if (!(e.is_string() || e.is_number() || e.is_boolean()))
-          fail(file, key + "[" + std::to_string(k) + "]", "a string, number or boolean", describe(e));
-        filter.values.push_back(value_text(e));  // 45.0 -> "45", as the cell text is written
-      }
-      agg.where.push_back(filter);
-    }
-  }
-
-  agg.group_by = string_list(a, "group_by", /*allow_empty=*/true, file, agg.key);
-  for (size_t k = 0; k < agg.group_by.size(); ++k) {
-    const std::string key = agg.key + ".group_by[" + std::to_string(k) + "]";
-    check_column(agg.group_by[k], key);
-    if (std::find(agg.group_by.begin(), agg.group_by.begin() + static_cast<long>(k), agg.group_by[k]) !=
-        agg.group_by.begin() + static_cast<long>(k))
-      fail(file, key, "a column not grouped by before", "\"" + agg.group_by[k] + "\"");
-  }
+  agg.where = parse_where(a, agg.key, check_column, file);
+  agg.group_by = distinct_columns(a, "group_by", /*allow_empty=*/true, agg.key, check_column, file);
   agg.header = agg.group_by;
 
   const std::string skey = agg.key + ".stats";
@@ -543,6 +598,50 @@ AggregateSpec parse_aggregate(const ojson& a, size_t i, const KnownTables& table
   return agg;
 }
 
+SelectSpec parse_select(const ojson& a, size_t i, const KnownTables& tables, const PipelineSpec& spec,
+                        const std::string& file) {
+  SelectSpec sel;
+  sel.key = "select[" + std::to_string(i) + "]";
+  if (!a.is_object()) fail(file, sel.key, "an object with csv, from, group_by, at_least and minimize", describe(a));
+  check_keys(a, {"csv", "from", "where", "group_by", "at_least", "minimize", "agree_on"}, file, sel.key);
+  sel.csv = inside_path(a, "csv", file, sel.key);
+  if (sel.csv.size() < 5 || sel.csv.substr(sel.csv.size() - 4) != ".csv")
+    fail(file, sel.key + ".csv", "a file name ending in .csv (the line goes beside it as .txt)", "\"" + sel.csv + "\"");
+  for (const auto& t : tables)
+    if (t.first == sel.csv)
+      fail(file, sel.key + ".csv", "a file name not used by another table", "\"" + sel.csv + "\"");
+  for (const auto& other : spec.selects)
+    if (other.csv == sel.csv)
+      fail(file, sel.key + ".csv", "a file name not used by another table", "\"" + sel.csv + "\" (also " + other.key + ")");
+  sel.from = inside_path(a, "from", file, sel.key);
+  const std::vector<std::string>& columns = known_table(tables, sel.from, sel.key, file);
+  const ColumnCheck check_column = column_check(columns, sel.from, file);
+  sel.where = parse_where(a, sel.key, check_column, file);
+  sel.group_by = distinct_columns(a, "group_by", /*allow_empty=*/true, sel.key, check_column, file);
+  const std::string tkey = sel.key + ".at_least";
+  if (!a.contains("at_least")) fail(file, tkey, "an object of column: number", "nothing (the key is required)");
+  const ojson& bounds = a["at_least"];
+  if (!bounds.is_object() || bounds.empty()) fail(file, tkey, "a non-empty object of column: number", describe(bounds));
+  for (auto it = bounds.begin(); it != bounds.end(); ++it) {
+    const std::string key = tkey + "." + it.key();
+    check_column(it.key(), key);
+    if (!it.value().is_number() || !std::isfinite(it.value().get<double>()))
+      fail(file, key, "a finite number", describe(it.value()));
+    sel.at_least.push_back({it.key(), it.value().get<double>()});
+  }
+  sel.minimize = distinct_columns(a, "minimize", /*allow_empty=*/false, sel.key, check_column, file);
+  if (a.contains("agree_on"))
+    sel.agree_on = distinct_columns(a, "agree_on", /*allow_empty=*/false, sel.key, check_column, file);
+  sel.header = sel.group_by;
+  sel.header.push_back("found");
+  for (const auto& c : columns)
+    if (std::find(sel.group_by.begin(), sel.group_by.end(), c) == sel.group_by.end()) {
+      if (c == "found") fail(file, sel.key + ".from", "a table without a column named found (the output adds it)", "found");
+      sel.header.push_back(c);
+    }
+  return sel;
+}
+
 PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const std::string& file) {
   PlotSpec plot;
   plot.key = "plots[" + std::to_string(i) + "]";
@@ -552,8 +651,9 @@ PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const st
   plot.csv = inside_path(p, "csv", file, plot.key);
   std::vector<std::string> tables = gather_csvs(spec);
   for (const auto& a : spec.aggregates) tables.push_back(a.csv);
+  for (const auto& e : spec.selects) tables.push_back(e.csv);
   if (std::find(tables.begin(), tables.end(), plot.csv) == tables.end())
-    fail(file, plot.key + ".csv", "one of the gather or aggregate tables (" + join(tables, ", ") + ")",
+    fail(file, plot.key + ".csv", "one of the gather, aggregate or select tables (" + join(tables, ", ") + ")",
          "\"" + plot.csv + "\"");
   const std::string gkey = plot.key + ".gnuplot";
   if (!p.contains("gnuplot")) fail(file, gkey, "a gnuplot script", "nothing (the key is required)");
@@ -577,6 +677,8 @@ PlotSpec parse_plot(const ojson& p, size_t i, const PipelineSpec& spec, const st
     header = headers(g->columns);
   for (const auto& a : spec.aggregates)
     if (a.csv == plot.csv) header = a.header;
+  for (const auto& e : spec.selects)
+    if (e.csv == plot.csv) header = e.header;
   static const std::regex named_column(R"(\b(?:column|strcol|stringcolumn)\s*\(\s*(['"])([^'"]*)\1\s*\))");
   for (auto it = std::sregex_iterator(plot.gnuplot.begin(), plot.gnuplot.end(), named_column); it != std::sregex_iterator(); ++it)
     if ((*it)[2].str().find("${") == std::string::npos &&  // a name built from a placeholder is left to gnuplot
@@ -597,6 +699,7 @@ void parse_required(const ojson& list, const std::string& file, const std::vecto
   if (!list.is_array()) fail(file, "requires", "a list of {pipeline, out}", describe(list));
   std::vector<std::string> own_files = gather_csvs(spec);
   for (const auto& a : spec.aggregates) own_files.push_back(a.csv);
+  for (const auto& e : spec.selects) own_files.push_back(e.csv);
   for (const auto& p : spec.plots) own_files.push_back(p.png);
   for (size_t i = 0; i < list.size(); ++i) {
     RequiredPipeline required;
@@ -666,7 +769,7 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
 PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs::path& pipeline_dir,
                             const std::vector<fs::path>& required_by) {
   if (!doc.is_object()) fail(file, "(top level)", "an object", describe(doc));
-  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "shared_steps", "steps", "gather", "aggregate",
+  check_keys(doc, {"name", "description", "requires", "variables", "sweep", "shared_steps", "steps", "gather", "aggregate", "select",
                    "plots"},
              file, "");
   PipelineSpec spec;
@@ -736,18 +839,23 @@ PipelineSpec parse_pipeline(const ojson& doc, const std::string& file, const fs:
              join(headers(added.columns), ", ") + " (" + first->key + ": " + join(headers(first->columns), ", ") + ")");
     }
   }
+  KnownTables tables;
+  for (const auto& csv : gather_csvs(spec)) {
+    const auto g = std::find_if(spec.gather.begin(), spec.gather.end(), [&](const GatherSpec& e) { return e.csv == csv; });
+    tables.emplace_back(csv, headers(g->columns));
+  }
   if (doc.contains("aggregate")) {
     const ojson& a = doc["aggregate"];
     if (!a.is_array()) fail(file, "aggregate", "a list of aggregate tables", describe(a));
-    KnownTables tables;
-    for (const auto& csv : gather_csvs(spec)) {
-      const auto g = std::find_if(spec.gather.begin(), spec.gather.end(), [&](const GatherSpec& e) { return e.csv == csv; });
-      tables.emplace_back(csv, headers(g->columns));
-    }
     for (size_t i = 0; i < a.size(); ++i) {
       spec.aggregates.push_back(parse_aggregate(a[i], i, tables, spec, file));
       tables.emplace_back(spec.aggregates.back().csv, spec.aggregates.back().header);
     }
+  }
+  if (doc.contains("select")) {
+    const ojson& a = doc["select"];
+    if (!a.is_array()) fail(file, "select", "a list of select tables", describe(a));
+    for (size_t i = 0; i < a.size(); ++i) spec.selects.push_back(parse_select(a[i], i, tables, spec, file));
   }
   if (doc.contains("plots")) {
     const ojson& p = doc["plots"];

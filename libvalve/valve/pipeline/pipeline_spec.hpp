@@ -43,8 +43,12 @@
 //      "columns": {"angle": "${angle}",          // ordered; a string with placeholders,
 //                  "error": "row:error_pct",     // "row:<path>" inside the current element,
 //                  "status": "summary:status",   // "summary:<path>" inside the summary,
-//                  "time": "file:sim/simulate.summary.json:metrics.solver.wall_seconds"}}
+//                  "time": "file:sim/simulate.summary.json:metrics.solver.wall_seconds",
 //                                                // "file:<json file in the run folder>:<path>"
+//                  "worst": {"min": ["summary:a.height", "summary:b.height"]}}}
+//                                                // {"min" or "max": [two or more summary:,
+//                                                // row: or file: sources]}: the smallest or
+//                                                // largest; empty when any is not a number
 //   ],
 //   "aggregate": [                       // optional: grouped statistics of the tables, computed
 //     {"csv": "biaxial_summary.csv",     // after the gather step, in this order; unique, not a
@@ -54,8 +58,17 @@
 //      "group_by": ["model", "load_kind"],                // required, may be []
 //      "stats": {"strain_error_pct": ["mean", "sd", "count"]}}   // required, non-empty
 //   ],
+//   "select": [                          // optional: per group, the row that meets every
+//     {"csv": "choice.csv",              // threshold and comes first by "minimize" (after the
+//      "from": "graft_sizing.csv",       // aggregates); unique csv; from: a gather or aggregate csv
+//      "where": {"status": ["ok"]},      // optional, as in an aggregate
+//      "group_by": ["stiffness"],        // required, may be []
+//      "at_least": {"native_min_height_mm": 1},   // required, non-empty: column: number
+//      "minimize": ["graft_rest_area_mm2"],       // required, non-empty list of columns
+//      "agree_on": ["width_pct", "height_pct"]}   // optional: compared across the groups
+//   ],
 //   "plots": [                           // optional: rendered with gnuplot when it is on PATH
-//     {"png": "error.png", "csv": "biaxial.csv",   // csv: a gather or an aggregate table
+//     {"png": "error.png", "csv": "biaxial.csv",   // csv: a gather, aggregate or select table
 //      "gnuplot": "plot '${csv}' using 2:5 with points"}   // a string or a list of lines
 //                                       // columns named in it (column('x'), strcol('x'))
 //                                       // must be the table's; with "set datafile
@@ -84,6 +97,18 @@
 // exactly, others with %.10g. Every column named in where, group_by and stats must be a
 // column of the "from" table (known before running: the gather columns, or the output
 // columns of the earlier aggregate), and the output column names must be distinct.
+//
+// Selections: each select entry reads its "from" table, keeps the rows that pass "where"
+// and whose "at_least" cells are all numbers at or above their bounds, and in each group
+// (one per distinct group_by combination among all rows that pass "where", in order of
+// first appearance) picks the row with the smallest "minimize" cells (numbers compared in
+// list order; a row with a non-numeric one is not a candidate; ties go to the earlier row).
+// The output has one row per group: the group_by columns, "found" (true/false), then the
+// chosen row's other columns (empty when none qualifies). One line of text, also in
+// <csv stem>.txt and printed by valve-pipeline, names each group's choice by its agree_on
+// columns (else its minimize columns) and says whether the agree_on values are the same in
+// every group. Why: a study's decision (the smallest graft that seals) stays a rule in the
+// file, checked before any run, rather than a reading of a plot.
 //
 // Required pipelines: each entry of "requires" is parsed and checked with this file (a
 // pipeline that requires itself, directly or through others, is an InputError), and
@@ -160,13 +185,15 @@ struct StepSpec {
   std::string key;                ///< "steps[i]", for messages
 };
 
-/// One CSV column: a literal (with placeholders), or a path into the summary or the row.
+/// One CSV column: a literal (with placeholders), a path into the summary or the row, or the
+/// smallest or largest number among several such paths.
 struct ColumnSpec {
-  enum class Source { literal, summary, row, file };
+  enum class Source { literal, summary, row, file, min, max };
   std::string header;
   Source source = Source::literal;
   std::string text;  ///< the literal, or the dot path after "summary:" / "row:" / "file:<file>:"
   std::string file;  ///< Source::file: the JSON file, relative to the run folder
+  std::vector<ColumnSpec> parts;  ///< Source::min / max: the summary, row or file columns compared
 };
 
 struct GatherSpec {
@@ -199,6 +226,24 @@ struct AggregateSpec {
   std::string key;                       ///< "aggregate[i]"
 };
 
+/// A "select" threshold: keep rows whose cell in `column` is a number >= `at_least`.
+struct SelectThreshold {
+  std::string column;
+  double at_least = 0;
+};
+
+struct SelectSpec {
+  std::string csv;                        ///< output, relative to DIR; the line goes to <stem>.txt
+  std::string from;                       ///< a gather or an aggregate CSV
+  std::vector<AggregateFilter> where;
+  std::vector<std::string> group_by;      ///< may be empty: one choice for the whole table
+  std::vector<SelectThreshold> at_least;  ///< non-empty
+  std::vector<std::string> minimize;      ///< non-empty; compared in order, ties by table order
+  std::vector<std::string> agree_on;      ///< columns the line compares across groups
+  std::vector<std::string> header;        ///< group_by, "found", then the other columns of from
+  std::string key;                        ///< "select[i]"
+};
+
 struct PlotSpec {
   std::string png;      ///< relative to DIR
   std::string csv;      ///< one of the gather or aggregate CSVs
@@ -227,6 +272,7 @@ struct PipelineSpec {
   std::vector<std::string> shared_outs;  ///< their --out folders, relative to a run folder
   std::vector<GatherSpec> gather;       ///< entries may share a csv (same columns)
   std::vector<AggregateSpec> aggregates;
+  std::vector<SelectSpec> selects;
   std::vector<PlotSpec> plots;
   ojson source;                        ///< the document as read
 };

@@ -303,6 +303,7 @@ void write_tables(const PipelineSpec& spec, const std::vector<RunPlan>& runs, co
   for (const auto& csv : gather_csvs(spec)) result.tables.push_back(write_gather_csv(spec, csv, runs, out, &tables[csv]));
   for (const auto& a : spec.aggregates)
     result.aggregates.push_back(write_aggregate(a, tables.at(a.from), out, &tables[a.csv]));
+  for (const auto& e : spec.selects) result.selects.push_back(write_select(e, tables.at(e.from), out));
   const auto gnuplot = spec.plots.empty() ? std::nullopt : find_on_path("gnuplot");
   if (!spec.plots.empty() && !gnuplot)
     std::fprintf(stderr, "valve-pipeline: warning: gnuplot is not on PATH, skipping %zu plot(s)\n", spec.plots.size());
@@ -437,6 +438,9 @@ PipelineOutcome run_pipeline(const PipelineSpec& spec, const RunnerOptions& opti
   }
   for (const auto& a : result.aggregates)
     m["csv"].push_back({{"file", a.path.string()}, {"kind", "aggregate"}, {"from", (out / a.from).string()}, {"rows", a.rows}});
+  for (const auto& e : result.selects)
+    m["csv"].push_back({{"file", e.path.string()}, {"kind", "select"}, {"from", (out / e.from).string()},
+                        {"rows", e.rows}, {"text", e.text.string()}, {"line", e.line}});
   m["plots"] = {{"made", nlohmann::json::array()}, {"skipped", nlohmann::json::array()}, {"failed", nlohmann::json::array()}};
   for (const auto& p : result.plots) {
     if (p.status == "made") m["plots"]["made"].push_back((out / p.png).string());

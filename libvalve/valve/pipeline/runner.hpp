@@ -4,10 +4,11 @@
 // <step>.log there, up to `jobs` runs at a time. A step whose exit code is not in its
 // allow_exit (or that cannot start, or is killed by a signal) fails the run and skips the
 // run's later steps; other runs go on. Then the gather tables (one file per csv, shared
-// entries concatenated), the aggregate tables (in file order) and the plots are written and
-// DIR/pipeline.summary.json (status ok only when every run and every attempted plot
-// succeeded; a plot skipped because gnuplot is absent is not a failure; metrics.csv lists
-// the gather tables, then the aggregate tables, each with its "kind" and row count).
+// entries concatenated), the aggregate tables and the select tables with their lines (in file
+// order) and the plots are written and DIR/pipeline.summary.json (status ok only when every
+// run and every attempted plot succeeded; a plot skipped because gnuplot is absent is not a
+// failure; metrics.csv lists the gather, then the aggregate, then the select tables, each
+// with its "kind" and row count, a select's also with its line).
 //
 // Required pipelines ("requires", pipeline_spec.hpp) run first, each by run_pipeline into
 // DIR/<out> with the same jobs and force and all of its runs; if one fails, no run of this
@@ -33,6 +34,7 @@
 #include <vector>
 
 #include "valve/pipeline/aggregate.hpp"
+#include "valve/pipeline/selection.hpp"
 #include "valve/pipeline/gather.hpp"
 #include "valve/pipeline/pipeline_spec.hpp"
 
@@ -112,6 +114,7 @@ struct PipelineOutcome {
   std::vector<RunOutcome> runs;
   std::vector<GatherResult> tables;         ///< one per gather csv, in order of first appearance
   std::vector<AggregateResult> aggregates;  ///< one per aggregate entry
+  std::vector<SelectResult> selects;        ///< one per select entry
   std::vector<PlotResult> plots;
   std::string status;  ///< "ok" or "failed"
   std::string reason;

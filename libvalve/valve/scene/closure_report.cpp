@@ -145,7 +145,11 @@ ClosedValveAnalysis analyze_closed_valve(const SceneConfig& scene, const TriMesh
     const auto edge = free_edge_polyline(mesh, l);
     if (edge.empty()) continue;
     const Midline mid = leaflet_midline(mesh, l);
+    double rest_area = 0;  // the tissue a graft of this size takes (graft studies compare it)
+    for (int t = 0; t < mesh.num_triangles(); ++t)
+      if (mesh.leaflet[t] == l) rest_area += triangle_area(mesh.points, mesh.triangles[t]);
     a.leaflets.push_back({{"leaflet", l},
+                          {"rest_area_mm2", rest_area},
                           {"free_edge_rest_mm", polyline_length(edge, X)},
                           {"free_edge_mm", polyline_length(edge, x)},
                           {"midline_rest_mm", mid.length(mesh, X)},
