@@ -338,3 +338,57 @@ TEST_CASE("root springs and pressure balance at the elastic tube's radius", "[me
     CHECK(relative_difference(analytic_dfdx(*term, m.num_nodes(), y, v, 1.0), numeric_dfdx(*term, y, v, 1.0, 1e-6)) < 1e-6);
   }
 }
+
+TEST_CASE("a stiffening root balances the pressure at the stiffness-index law's radius", "[mechanics][root]") {
+  const TriMesh m = root_band();
+  const RootGeometry g = root_geometry(m, Vec3::Zero(), Vec3::UnitZ());
+  const double E = 0.4, t = 1.6, r0 = 10 / 1.15, Ps = 80 * units::mmHg;
+  const double rs = r0 / (1 - Ps * r0 / (E * t));  // the linear tube's radius at 80 mmHg
+  RootSpringTerm springs(g, m.points, E, t, r0, rs);
+  // C1 continuity fixes beta = r0 / (rs - r0); with the shipped wall 5.90 (by hand: r0 = 8.696,
+  // rs = 10.169 mm).
+  CHECK(springs.stiffness_index() == Approx(r0 / (rs - r0)));
+  CHECK(springs.stiffness_index() == Approx(5.90).margin(0.005));
+  // Diameters by hand from D = Ds (1 + ln(P / Ps) / beta): 21.74 mm at 120 mmHg, 23.50 at 200
+  // (the linear tube: 22.22 and 27.27 mm); up to Ps the linear tube's radius.
+  CHECK(2 * free_tube_radius(120 * units::mmHg, E, t, r0, rs) == Approx(21.736).margin(0.001));
+  CHECK(2 * free_tube_radius(200 * units::mmHg, E, t, r0, rs) == Approx(23.497).margin(0.001));
+  CHECK(2 * free_tube_radius(200 * units::mmHg, E, t, r0, std::nullopt) == Approx(27.271).margin(0.001));
+  CHECK(free_tube_radius(40 * units::mmHg, E, t, r0, rs) == Approx(r0 / (1 - 40 * units::mmHg * r0 / (E * t))));
+  CHECK(free_tube_radius(Ps, E, t, r0, rs) == Approx(rs));
+  CHECK_THROWS_AS(free_tube_radius(600 * units::mmHg, E, t, r0, std::nullopt), NumericalError);
+  CHECK(std::isfinite(free_tube_radius(600 * units::mmHg, E, t, r0, rs)));
+  CHECK_THROWS_AS(RootSpringTerm(g, m.points, E, t, r0, 0.9 * r0), InputError);
+
+  const VecX v = VecX::Zero(3 * m.num_nodes());
+  auto tube_at = [&](double radius) {
+    VecX x = flatten(m.points) * (radius / 10);
+    for (int i = 0; i < m.num_nodes(); ++i) x[3 * i + 2] = m.points(i, 2);
+    return x;
+  };
+  for (double mmHg : {40.0, 120.0, 200.0}) {
+    INFO(mmHg << " mmHg");
+    RootPressureTerm pressure(g, mmHg * units::mmHg);
+    const VecX x = tube_at(free_tube_radius(mmHg * units::mmHg, E, t, r0, rs));
+    VecX f = VecX::Zero(x.size()), fp = VecX::Zero(x.size());
+    springs.add(State{x, v, 1.0, 0}, f, nullptr, nullptr);
+    pressure.add(State{x, v, 1.0, 0}, fp, nullptr, nullptr);
+    CHECK((f + fp).norm() < 1e-9 * fp.norm());
+  }
+  // The hoop force is continuous with its slope at rs: one-sided differences agree.
+  auto radial_force = [&](double radius) {
+    VecX f = VecX::Zero(3 * m.num_nodes());
+    springs.add(State{tube_at(radius), v, 1.0, 0}, f, nullptr, nullptr);
+    return f[0];
+  };
+  const double h = 1e-5;
+  CHECK(0.5 * (radial_force(rs + h) + radial_force(rs - h)) == Approx(radial_force(rs)).epsilon(1e-9));
+  CHECK((radial_force(rs + 2 * h) - radial_force(rs + h)) / h ==
+        Approx((radial_force(rs - h) - radial_force(rs - 2 * h)) / h).epsilon(1e-3));
+  // Jacobian against finite differences on the stiff branch (radius 11.5 mm, moved up to 0.3 mm).
+  VecX y = tube_at(11.5);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  for (int k = 0; k < y.size(); ++k) y[k] += jitter(rng);
+  CHECK(relative_difference(analytic_dfdx(springs, m.num_nodes(), y, v, 1.0), numeric_dfdx(springs, y, v, 1.0, 1e-6)) < 1e-6);
+}

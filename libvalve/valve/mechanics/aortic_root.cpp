@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "valve/core/error.hpp"
 #include "valve/mesh/topology.hpp"
@@ -27,13 +29,19 @@ Radial radial(const RootGeometry& g, const Vec3& p) {
   return out;
 }
 
-// Adds φ(r) e_r and its Jacobian for φ(r) = a + b r.
-void add_radial(const RootGeometry& g, int i, const VecX& x, double a, double b, VecX& f, BlockJacobian* dfdx) {
+// Adds φ(r) e_r and its Jacobian; phi_of(r) gives {φ(r), φ'(r)}.
+template <class Phi>
+void add_radial(const RootGeometry& g, int i, const VecX& x, const Phi& phi_of, VecX& f, BlockJacobian* dfdx) {
   const Radial rd = radial(g, node3(x, i));
   if (rd.r <= 0) return;
-  const double phi = a + b * rd.r;
+  const auto [phi, dphi] = phi_of(rd.r);
   node3(f, i) += phi * rd.e;
-  if (dfdx) dfdx->add(i, i, b * rd.e * rd.e.transpose() + phi / rd.r * (rd.P - rd.e * rd.e.transpose()));
+  if (dfdx) dfdx->add(i, i, dphi * rd.e * rd.e.transpose() + phi / rd.r * (rd.P - rd.e * rd.e.transpose()));
+}
+
+// φ(r) = a + b r.
+auto affine(double a, double b) {
+  return [a, b](double r) { return std::pair<double, double>(a + b * r, b); };
 }
 
 }  // namespace
@@ -71,8 +79,15 @@ RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Ve
   return g;
 }
 
-RootSpringTerm::RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0)
-    : g_(g), r0_(r0) {
+RootSpringTerm::RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0,
+                               std::optional<double> stiffening_radius)
+    : g_(g), r0_(r0), rs_(stiffening_radius) {
+  if (rs_) {
+    if (!(std::isfinite(*rs_) && *rs_ > r0))
+      throw InputError("aortic_root: expected a stiffening radius above the unloaded radius " + format_number(r0) +
+                       " mm, found " + format_number(*rs_) + " mm");
+    beta_ = r0 / (*rs_ - r0);
+  }
   for (size_t k = 0; k < g_.nodes.size(); ++k) {
     k_.push_back(E * t * g_.wall_area[k] / (g_.mesh_radius * r0));
     rest_.push_back(points.row(g_.nodes[k]).transpose());
@@ -86,8 +101,14 @@ void RootSpringTerm::couplings(std::vector<std::pair<int, int>>&) const {}
 void RootSpringTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
   for (size_t k = 0; k < g_.nodes.size(); ++k) {
     const int i = g_.nodes[k];
-    // −E t (r − r0)/r0 · A_i/R = k_i r0 − k_i r
-    add_radial(g_, i, s.x, k_[k] * r0_, -k_[k], f, dfdx);
+    // −N(r) A_i/R = −k_i n(r) with n = N r0 / (E t): r − r0 on the linear branch,
+    // (r_s − r0)(r / r_s) exp(β (r / r_s − 1)) beyond r_s.
+    const double ki = k_[k];
+    add_radial(g_, i, s.x, [&](double r) {
+      if (!rs_ || r <= *rs_) return std::pair<double, double>(-ki * (r - r0_), -ki);
+      const double rho = r / *rs_, grow = std::exp(beta_ * (rho - 1)), ns = *rs_ - r0_;
+      return std::pair<double, double>(-ki * ns * rho * grow, -ki * ns / *rs_ * grow * (1 + beta_ * rho));
+    }, f, dfdx);
     node3(f, i) -= k_[k] * tangential_[k] * (node3(s.x, i) - rest_[k]);
     if (dfdx) dfdx->add(i, i, -k_[k] * tangential_[k]);
   }
@@ -99,7 +120,21 @@ void RootPressureTerm::couplings(std::vector<std::pair<int, int>>&) const {}
 
 void RootPressureTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {
   for (size_t k = 0; k < g_.nodes.size(); ++k)
-    add_radial(g_, g_.nodes[k], s.x, 0.0, s.load * pressure_ * g_.wall_area[k] / g_.mesh_radius, f, dfdx);
+    add_radial(g_, g_.nodes[k], s.x, affine(0.0, s.load * pressure_ * g_.wall_area[k] / g_.mesh_radius), f, dfdx);
+}
+
+double free_tube_radius(double pressure, double E, double t, double r0, std::optional<double> stiffening_radius) {
+  const double c = pressure * r0 / (E * t);
+  const double linear = c < 1 ? r0 / (1 - c) : std::numeric_limits<double>::infinity();
+  if (stiffening_radius && linear > *stiffening_radius) {
+    const double rs = *stiffening_radius, beta = r0 / (rs - r0);
+    const double ps = E * t * (rs - r0) / (r0 * rs);  // the linear tube's pressure at r_s
+    return rs * (1 + std::log(pressure / ps) / beta);
+  }
+  if (!std::isfinite(linear))
+    throw NumericalError("aortic_root: the linear tube has no equilibrium at " + format_number(pressure) +
+                         " MPa (P r0 >= E t)");
+  return linear;
 }
 
 }  // namespace valve

@@ -14,6 +14,18 @@
 // direction; otherwise the attachment could slide along the wall at no cost.
 // Jacobians: with q = (I − u uᵀ)(p − a), r = |q|, e_r = q / r and φ(r) the radial magnitude,
 //     df/dp = φ'(r) e_r e_rᵀ + φ(r) / r (I − u uᵀ − e_r e_rᵀ).
+//
+// Stiffening (optional). The linear tube's radius diverges as P r0 / (E t) nears 1: with the
+// shipped wall it is 20.3 mm across at 80 mmHg, 22.2 at 120 and 27.3 at 200, where no
+// leaflets of the valve's size can meet. Arteries stiffen instead; the clinical stiffness
+// index β = ln(P / P_s) / (D / D_s − 1) (Kawasaki et al. 1987) is near constant over the
+// physiological range. Given a stiffening radius r_s (the free tube's radius at a pressure
+// P_s), the hoop tension per unit length N = σ t is, beyond r_s,
+//     N(r) = N_s (r / r_s) exp(β (r / r_s − 1)),   N_s = E t (r_s − r0) / r0,
+// so that the free tube follows P = N / r = P_s exp(β (r / r_s − 1)); below r_s it stays
+// E t (r − r0) / r0. β = r0 / (r_s − r0) makes N and dN/dr continuous at r_s: β is the
+// linear tube's own stiffness index at P_s, kept constant above it instead of falling.
+#include <optional>
 #include <vector>
 
 #include "valve/mechanics/force_term.hpp"
@@ -39,8 +51,12 @@ double radius_from_axis(const RootGeometry& g, const Vec3& p);
 
 class RootSpringTerm final : public ForceTerm {
  public:
-  /// `E` MPa, `t` mm, `r0` unloaded radius mm; rest positions from `points`.
-  RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0);
+  /// `E` MPa, `t` mm, `r0` unloaded radius mm; rest positions from `points`; `stiffening_radius`
+  /// r_s > r0 (mm) where the hoop tension turns exponential (see above), or none.
+  RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0,
+                 std::optional<double> stiffening_radius = std::nullopt);
+  /// The stiffness index β above r_s (0 without stiffening).
+  double stiffness_index() const { return beta_; }
   std::string name() const override { return "root_springs"; }
   void couplings(std::vector<std::pair<int, int>>& pairs) const override;
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
@@ -51,7 +67,14 @@ class RootSpringTerm final : public ForceTerm {
   std::vector<Vec3> rest_;   // rest position
   std::vector<Mat3> tangential_;  // I − e_r0 e_r0ᵀ at rest
   double r0_;
+  std::optional<double> rs_;  // stiffening radius
+  double beta_ = 0;
 };
+
+/// Radius of the free tube (no leaflets) at pressure P (MPa): r0 / (1 − P r0 / (E t)) while
+/// the linear law holds; beyond the stiffening radius r_s (when given), r_s (1 + ln(P / P_s) / β).
+/// Throws NumericalError when the linear tube has no equilibrium (P r0 ≥ E t).
+double free_tube_radius(double pressure, double E, double t, double r0, std::optional<double> stiffening_radius);
 
 class RootPressureTerm final : public ForceTerm {
  public:

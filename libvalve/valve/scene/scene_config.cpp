@@ -211,15 +211,29 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     JsonReader pr(preset, preset_file.string(), "");
     const double t_default = pr.quantity("wall_thickness", Dimension::length, std::nullopt, 1e-6, 100);
     const double e_default = pr.quantity("youngs_modulus", Dimension::pressure, std::nullopt, 1e-9, 1e6);
+    const std::optional<double> stiffening_default =
+        pr.has("stiffening_pressure")
+            ? std::optional<double>(pr.quantity("stiffening_pressure", Dimension::pressure, std::nullopt, 1e-9, 1e3))
+            : std::nullopt;
     ac.source = pr.string("source", std::string(""));
     pr.string("name", std::string(""));
     pr.string("note", std::string(""));
+    pr.string("stiffening_source", std::string(""));
     pr.finish();
     ac.wall_thickness = a.quantity("wall_thickness", Dimension::length, t_default, 1e-6, 100);
     a.document("wall_thickness", "", "the preset's");
     ac.youngs_modulus = a.quantity("youngs_modulus", Dimension::pressure, e_default, 1e-9, 1e6);
     a.document("youngs_modulus", "", "the preset's");
     ac.unloaded_diameter_ratio = a.number("unloaded_diameter_ratio", ac.unloaded_diameter_ratio, 0.5, 2.0);
+    // "none" turns the preset's stiffening off: the seed's linear tube at every pressure.
+    if (a.has("stiffening_pressure") && a.raw("stiffening_pressure") == json("none")) {
+      a.record("stiffening_pressure", "none");
+    } else if (a.has("stiffening_pressure")) {
+      ac.stiffening_pressure = a.quantity("stiffening_pressure", Dimension::pressure, std::nullopt, 1e-9, 1e3);
+    } else if (stiffening_default) {
+      ac.stiffening_pressure = a.quantity("stiffening_pressure", Dimension::pressure, *stiffening_default, 1e-9, 1e3);
+    }
+    a.document("stiffening_pressure", "pressure or \"none\"", "the preset's, else none");
     ac.pressure = sc.pressure ? a.quantity("pressure", Dimension::pressure, sc.pressure->value, 0.0, 1e3)
                               : a.quantity("pressure", Dimension::pressure, std::nullopt, 0.0, 1e3);
     a.document("pressure", "", "the scene's pressure");

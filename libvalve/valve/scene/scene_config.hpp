@@ -70,6 +70,9 @@ struct AorticRootConfig {
   double wall_thickness = 0;              // mm (from the preset)
   double youngs_modulus = 0;              // MPa (from the preset)
   double pressure = 0;                    // MPa distending the root (default: the scene pressure)
+  /// MPa: above the linear tube's radius at this pressure the wall stiffens exponentially
+  /// (mechanics/aortic_root.hpp); none keeps the seed's linear tube at every pressure.
+  std::optional<double> stiffening_pressure;
   std::string preset, source;
 };
 /// Bending stiffness (mechanics/bending.hpp): flexural rigidity D = E_b t³ / 12.

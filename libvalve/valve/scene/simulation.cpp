@@ -280,15 +280,23 @@ RootDistension distend_root(const SceneConfig& sc, const TriMesh& mesh, VecX& x)
   out.mesh_diameter = 2 * g.mesh_radius;
   const double r0 = g.mesh_radius / rc.unloaded_diameter_ratio;
   out.unloaded_diameter = 2 * r0;
-  const double strain_factor = rc.pressure * r0 / (rc.youngs_modulus * rc.wall_thickness);
-  out.tube_diameter = strain_factor < 1 ? 2 * r0 / (1 - strain_factor) : std::numeric_limits<double>::infinity();
+  // The stiffening radius: the linear tube's radius at the stiffening pressure.
+  std::optional<double> stiffening_radius;
+  if (rc.stiffening_pressure)
+    stiffening_radius = free_tube_radius(*rc.stiffening_pressure, rc.youngs_modulus, rc.wall_thickness, r0, std::nullopt);
+  try {
+    out.tube_diameter = 2 * free_tube_radius(rc.pressure, rc.youngs_modulus, rc.wall_thickness, r0, stiffening_radius);
+  } catch (const NumericalError&) {
+    out.tube_diameter = std::numeric_limits<double>::infinity();
+  }
   // The attachment is free to follow the root; everything else as in the scene, minus the
   // leaflet pressure (the leaflets are loaded in the second step).
   TriMesh free_mesh = mesh;
   free_mesh.roles.assign(mesh.num_nodes(), NodeRole::free);
   MechanicalSystem sys(free_mesh, sc.density, sc.thickness);
   add_material_terms(sc, free_mesh, sys);
-  sys.add_term(std::make_unique<RootSpringTerm>(g, mesh.start_positions(), rc.youngs_modulus, rc.wall_thickness, r0));
+  sys.add_term(std::make_unique<RootSpringTerm>(g, mesh.start_positions(), rc.youngs_modulus, rc.wall_thickness, r0,
+                                                stiffening_radius));
   sys.add_term(std::make_unique<RootPressureTerm>(g, rc.pressure));
   sys.finalize();
   x = flatten(mesh.start_positions());
