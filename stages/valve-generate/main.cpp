@@ -9,8 +9,9 @@
 // KIND: square_patch | clamped_disk (a flat disk of --diameter, rim fixed: pressure tests and
 // the CalculiX cross-check) | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
 // [--gamma DEG] [--commissure-height MM] [--graft-leaflet K --graft-width-pct W
-// --graft-height-pct H], fibers at 25 deg by default, descending toward each leaflet's
-// midline; a negative angle mirrors them). --count K writes K meshes with
+// --graft-height-pct H], fibers at 25 deg to the free edge rising toward each leaflet's
+// midline by default (-25; a positive angle descends toward it; the normal valve's choices:
+// configs/aortic_valve_normal.json). --count K writes K meshes with
 // seeds S, S+1, ..., named NAME_<seed>.vtp.
 #include <cstdio>
 #include <filesystem>
@@ -50,7 +51,7 @@ int main(int argc, char** argv) {
     r.triangles = static_cast<int>(whole_number_flag(cl, "triangles", default_triangles, r.is_valve() ? 6 : 2, 5000000));
     const auto seed = static_cast<std::uint64_t>(whole_number_flag(cl, "seed", 1, 0, 1000000000000000L));
     const int count = static_cast<int>(whole_number_flag(cl, "count", 1, 1, 10000));
-    r.fiber_angle_deg = number_flag(cl, "fiber-angle", r.kind == "aortic_valve" ? 25 : 0, -360, 360);
+    r.fiber_angle_deg = number_flag(cl, "fiber-angle", r.kind == "aortic_valve" ? AorticValveOptions{}.fiber_angle_deg : 0, -360, 360);
     const std::string name = cl.get("name").value_or(r.kind);
     if (name.empty() || name.find('/') != std::string::npos || name == "." || name == "..")
       throw InputError("--name: expected a file name without '/', found \"" + name + "\"");

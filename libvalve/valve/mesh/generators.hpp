@@ -57,15 +57,16 @@ TriMesh generate_three_leaflet_valve(const LeafletOptions& opt);
 /// on a cylinder of radius width_scale · d/2 (an isometry) and it starts at the root's radius,
 /// compressed circumferentially (TriMesh::initial) until the pressure takes up the slack.
 ///
-/// Fibers (Fig. 4.6): parallel to the free edge, or at fiber_angle_deg to it in a pattern
-/// symmetric about the midline, running down toward the midline like a hammock; a negative
-/// angle mirrors the pattern (fibers rising toward the midline).
+/// Fibers (Fig. 4.6): parallel to the free edge, or at |fiber_angle_deg| to it in a pattern
+/// symmetric about the midline: a positive angle runs down toward the midline like a hammock,
+/// a negative one (the default, -25°) rises toward it. The normal valve's choice and its
+/// evidence: configs/aortic_valve_normal.json.
 struct AorticValveOptions {
   double diameter = 20.0;           // mm, root diameter the leaflets are unstressed at
   double gamma_deg = 22.0;
   double width_ratio = 1.047;       // leaflet width / diameter
   double commissure_height = 5.0;   // mm
-  double fiber_angle_deg = 25.0;    // 0 = parallel to the free edge
+  double fiber_angle_deg = -25.0;   // 0 = parallel to the free edge
   double width_scale[3] = {1, 1, 1};
   double height_scale[3] = {1, 1, 1};
   PlanarMeshOptions mesh{220, 1};   // per leaflet
