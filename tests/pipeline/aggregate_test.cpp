@@ -115,6 +115,14 @@ TEST_CASE("aggregate: where filters, groups in order of first appearance, empty 
   CHECK(ta.header == std::vector<std::string>{"angle", "err_count", "err_max", "angle_mean"});
   CHECK(ta.rows == Rows{{"45", "12", "100", "45"}, {"0", "1", "50", "0"}});
 
+  // true_count counts the cells that read true (booleans as gather writes them); numbers,
+  // "TRUE" and empty cells do not count.
+  const CsvTable flags{{"model", "closed"}, {{"fe", "true"}, {"fe", "false"}, {"fe", "true"}, {"ms", "TRUE"}, {"ms", "1"}, {"ms", ""}}};
+  const auto counted = parse(R"({"steps": [{"stage": "valve-simulate", "args": []}],
+    "gather": [{"csv": "c.csv", "summary": "s.json", "columns": {"model": "summary:m", "closed": "summary:c"}}],
+    "aggregate": [{"csv": "n.csv", "from": "c.csv", "group_by": ["model"], "stats": {"closed": ["true_count", "count"]}}]})");
+  CHECK(aggregate_table(counted.aggregates[0], flags).rows == Rows{{"fe", "2", "0"}, {"ms", "0", "1"}});
+
   // Text filters match the cell text exactly; numbers in the list as their shortest text.
   const auto numeric = parse(with_aggregate(R"([{"csv": "x.csv", "from": "biaxial.csv",
     "where": {"err": [4, "5", 1e2]}, "group_by": [], "stats": {"err": ["count", "mean"]}}])"));
@@ -167,7 +175,7 @@ TEST_CASE("aggregate: validation errors name the key path", "[pipeline]") {
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "s.csv", "group_by": [], "stats": {"err": ["mean"]}}])")),
              Catch::Contains("aggregate[0].from: expected a gather table or an earlier aggregate table"));
   CHECK(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": [], "stats": {"err": ["mean", "avg"]}}])")) ==
-        "P.json: aggregate[0].stats.err[1]: expected a stat (mean, sd, min, max, median, count), found \"avg\"");
+        "P.json: aggregate[0].stats.err[1]: expected a stat (mean, sd, min, max, median, count, true_count), found \"avg\"");
   CHECK(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": [], "stats": {"eror": ["mean"]}}])")) ==
         "P.json: aggregate[0].stats.eror: expected a column of biaxial.csv (model, component, angle, err), found \"eror\"");
   CHECK(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": ["model", "modle"], "stats": {"err": ["mean"]}}])")) ==
@@ -194,7 +202,7 @@ TEST_CASE("aggregate: validation errors name the key path", "[pipeline]") {
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": [], "stats": {}}])")),
              Catch::Contains("aggregate[0].stats: expected a non-empty object"));
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": [], "stats": {"err": "mean"}}])")),
-             Catch::Contains("aggregate[0].stats.err: expected a non-empty list of stats (mean, sd, min, max, median, count)"));
+             Catch::Contains("aggregate[0].stats.err: expected a non-empty list of stats (mean, sd, min, max, median, count, true_count)"));
   CHECK_THAT(message_of(with_aggregate(R"([{"csv": "s.csv", "from": "biaxial.csv", "group_by": [], "stats": {"err": ["mean", "mean"]}}])")),
              Catch::Contains("aggregate[0].stats.err[1]: expected an output column name not used before in aggregate[0], found \"err_mean\""));
   // Output files: inside DIR, not a gather table, not another aggregate.

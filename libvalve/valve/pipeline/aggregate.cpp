@@ -100,12 +100,14 @@ CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
   // Per group (in order of first appearance): the numeric values of each stats column.
   std::vector<std::vector<std::string>> group_keys;
   std::vector<std::vector<std::vector<double>>> group_values;
+  std::vector<std::vector<size_t>> group_true;  // cells "true" (booleans are written so)
   std::map<std::vector<std::string>, size_t> group_of;
   auto group_for = [&](const std::vector<std::string>& key) {
     const auto [it, added] = group_of.emplace(key, group_keys.size());
     if (added) {
       group_keys.push_back(key);
       group_values.emplace_back(value_columns.size());
+      group_true.emplace_back(value_columns.size(), 0);
     }
     return it->second;
   };
@@ -115,8 +117,11 @@ CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
   for (const auto& row : from.rows) {
     if (!grouping.kept(row)) continue;
     const size_t g = group_for(grouping.group(row));
-    for (size_t v = 0; v < value_columns.size(); ++v)
-      if (const auto x = numeric_cell(cell_of(row, value_columns[v]))) group_values[g][v].push_back(*x);
+    for (size_t v = 0; v < value_columns.size(); ++v) {
+      const std::string cell = cell_of(row, value_columns[v]);
+      if (const auto x = numeric_cell(cell)) group_values[g][v].push_back(*x);
+      group_true[g][v] += cell == "true" ? 1 : 0;
+    }
   }
 
   CsvTable table;
@@ -124,7 +129,9 @@ CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
   for (size_t g = 0; g < group_keys.size(); ++g) {
     std::vector<std::string> row = group_keys[g];
     for (size_t v = 0; v < aggregate.stats.size(); ++v)
-      for (const auto& stat : aggregate.stats[v].stats) row.push_back(stat_cell(stat, group_values[g][v]));
+      for (const auto& stat : aggregate.stats[v].stats)
+        row.push_back(stat == "true_count" ? number_cell(static_cast<double>(group_true[g][v]))
+                                           : stat_cell(stat, group_values[g][v]));
     table.rows.push_back(row);
   }
   return table;

@@ -16,7 +16,8 @@ namespace valve {
 /// for empty cells, words, "nan", "inf" and hexadecimal.
 std::optional<double> numeric_cell(const std::string& text);
 
-/// One statistic ("mean", "sd", "min", "max", "median", "count") of `values` as a cell:
+/// One statistic ("mean", "sd", "min", "max", "median", "count"; true_count is counted by
+/// aggregate_table from the cell texts) of `values` as a cell:
 /// empty when undefined (no values; sd of fewer than 2), integral values exactly, others
 /// with %.10g. `values` need not be sorted.
 std::string stat_cell(const std::string& stat, std::vector<double> values);

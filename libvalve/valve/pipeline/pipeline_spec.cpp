@@ -885,7 +885,7 @@ std::vector<std::string> gather_csvs(const PipelineSpec& spec) {
 }
 
 const std::vector<std::string>& aggregate_stat_names() {
-  static const std::vector<std::string> names{"mean", "sd", "min", "max", "median", "count"};
+  static const std::vector<std::string> names{"mean", "sd", "min", "max", "median", "count", "true_count"};
   return names;
 }
 

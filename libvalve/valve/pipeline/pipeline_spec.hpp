@@ -90,7 +90,8 @@
 // "group_by": [] makes one row for the whole table (also when no row passes). The output
 // columns are the group_by columns, then "<column>_<stat>" for every column of "stats" and
 // every stat of its list, in file order. Stats: mean, sd (sample standard deviation, n - 1),
-// min, max, median (the mean of the two middle values for even n) and count. They use only
+// min, max, median (the mean of the two middle values for even n), count and true_count
+// (the cells that read true, as booleans are written). The others use only
 // the numeric cells of the group (decimal numbers; empty and other text cells are skipped):
 // count is the number of numeric cells, the others are empty when there are none (sd when
 // there are fewer than 2), never nan. Values are written like gather cells: integral values
@@ -311,7 +312,7 @@ PipelineSpec load_pipeline(const std::filesystem::path& path);
 /// The distinct gather CSVs in order of first appearance (entries may share one).
 std::vector<std::string> gather_csvs(const PipelineSpec& spec);
 
-/// The stat names an aggregate accepts: mean, sd, min, max, median, count.
+/// The stat names an aggregate accepts: mean, sd, min, max, median, count, true_count.
 const std::vector<std::string>& aggregate_stat_names();
 
 /// The variable assignments of every run, in run order (grid: first variable slowest).
