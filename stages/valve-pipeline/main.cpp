@@ -3,7 +3,8 @@
 // valve-pipeline export --snakemake P.json --out DIR [--stage-dir D ...]
 // `run` runs a pipeline JSON (format in libvalve/valve/pipeline/pipeline_spec.hpp): every run
 // in DIR/runs/<run_id>/ with one <step>.log per step, up to N runs at a time, then writes
-// the gather CSVs and gnuplot plots into DIR and DIR/pipeline.summary.json.
+// the gather, aggregate and select CSVs (a select's one-line decision also in <csv stem>.txt
+// and printed) and the gnuplot plots into DIR, and DIR/pipeline.summary.json.
 // Steps already done with the same command, stage build and input files are skipped
 // (libvalve/valve/pipeline/step_cache.hpp), so running again resumes after a failure;
 // --run ID (repeatable) runs only those runs (ids as `list` prints them), and the tables
@@ -21,7 +22,7 @@
 // on a cluster `snakemake -s DIR/Snakefile --slurm --jobs N --default-resources ...`.
 // The Snakefile's rules call two more commands: `stamp P.json --out DIR --run ID --step NAME
 // --exit-code C --stage-sha256 H` (fails with exit 3 unless C is allowed, else writes the
-// step's cache stamp) and `tables P.json --out DIR` (the gather, aggregate and plot files,
+// step's cache stamp) and `tables P.json --out DIR` (the gather, aggregate, select and plot files,
 // and provenance.json, from the runs' folders as they are).
 // Exit 0 ok, 2 bad pipeline (one line naming file and key, nothing written), 3 some run or
 // plot failed (the summary says which; the tables still hold what the other runs made).

@@ -5,6 +5,7 @@
 #include "pipeline_test_support.hpp"
 #include "valve/core/error.hpp"
 #include "valve/core/install_layout.hpp"
+#include "valve/pipeline/pipeline_commands.hpp"
 #include "valve/pipeline/process.hpp"
 #include "valve/pipeline/snakemake_export.hpp"
 #include "valve/pipeline/step_cache.hpp"
@@ -92,6 +93,36 @@ TEST_CASE("runner: allow_exit, failed runs skip later steps, logs, summary and g
   CHECK(summary["metrics"]["runs"][1]["variables"]["code"] == 3);
   CHECK(summary["metrics"]["csv"][0]["rows"] == 3);
   CHECK(summary.contains("wall_time_s"));
+}
+
+TEST_CASE("runner: a select entry writes its table and line, prints the line and lists it in the summary", "[pipeline]") {
+  TempDir tmp("runner_select");
+  write_fake_stages(tmp.path() / "bin");
+  // Each run reports a "seal" of value - 2 (value 1..4): the smallest value with seal >= 1 is 3.
+  const auto spec = write_and_load(tmp.path(), R"({
+    "variables": {"size": [4, 1, 3, 2]},
+    "steps": [{"name": "report", "stage": "valve-report", "args": ["${size}"]}],
+    "gather": [{"csv": "sizes.csv", "summary": "report.summary.json",
+                "columns": {"size": "${size}", "value": "summary:value",
+                            "seal": {"min": ["summary:value", "summary:value"]}}}],
+    "select": [{"csv": "choice.csv", "from": "sizes.csv", "group_by": [], "at_least": {"value": 3},
+                "minimize": ["size"]}]
+  })");
+  RunnerOptions options;
+  options.out_dir = tmp.path() / "out";
+  options.stage_dirs = {tmp.path() / "bin"};
+  const PipelineOutcome result = run_pipeline(spec, options);
+  REQUIRE(result.exit_code == 0);
+  REQUIRE(result.selects.size() == 1);
+  const fs::path out = tmp.path() / "out";
+  CHECK(read_text(out / "choice.csv") == "found,size,value,seal\ntrue,3,3,3\n");
+  CHECK(read_text(out / "choice.txt") == "choice.csv: smallest size with value >= 3: size 3\n");
+  CHECK_THAT(pipeline_outcome_line(result), Catch::EndsWith("\nvalve-pipeline: choice.csv: smallest size with value >= 3: size 3"));
+  const ojson summary = ojson::parse(read_text(out / "pipeline.summary.json"));
+  const ojson& listed = summary["metrics"]["csv"].back();
+  CHECK(listed["kind"] == "select");
+  CHECK(listed["line"] == "choice.csv: smallest size with value >= 3: size 3");
+  CHECK(listed["rows"] == 1);
 }
 
 TEST_CASE("runner: stage names cannot carry placeholders, broken and killed stages", "[pipeline]") {
