@@ -86,7 +86,7 @@ RootSpringTerm::RootSpringTerm(const RootGeometry& g, const MatX3& points, doubl
     if (!(std::isfinite(*rs_) && *rs_ > r0))
       throw InputError("aortic_root: expected a stiffening radius above the unloaded radius " + format_number(r0) +
                        " mm, found " + format_number(*rs_) + " mm");
-    beta_ = r0 / (*rs_ - r0);
+    beta_ = root_stiffness_index(r0, *rs_);
   }
   for (size_t k = 0; k < g_.nodes.size(); ++k) {
     k_.push_back(E * t * g_.wall_area[k] / (g_.mesh_radius * r0));
@@ -127,7 +127,7 @@ double free_tube_radius(double pressure, double E, double t, double r0, std::opt
   const double c = pressure * r0 / (E * t);
   const double linear = c < 1 ? r0 / (1 - c) : std::numeric_limits<double>::infinity();
   if (stiffening_radius && linear > *stiffening_radius) {
-    const double rs = *stiffening_radius, beta = r0 / (rs - r0);
+    const double rs = *stiffening_radius, beta = root_stiffness_index(r0, rs);
     const double ps = E * t * (rs - r0) / (r0 * rs);  // the linear tube's pressure at r_s
     return rs * (1 + std::log(pressure / ps) / beta);
   }

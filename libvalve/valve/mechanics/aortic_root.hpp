@@ -71,6 +71,10 @@ class RootSpringTerm final : public ForceTerm {
   double beta_ = 0;
 };
 
+/// The stiffness index above the stiffening radius r_s that keeps the hoop tension and its
+/// slope continuous there: β = r0 / (r_s − r0) (see above).
+inline double root_stiffness_index(double r0, double stiffening_radius) { return r0 / (stiffening_radius - r0); }
+
 /// Radius of the free tube (no leaflets) at pressure P (MPa): r0 / (1 − P r0 / (E t)) while
 /// the linear law holds; beyond the stiffening radius r_s (when given), r_s (1 + ln(P / P_s) / β).
 /// Throws NumericalError when the linear tube has no equilibrium (P r0 ≥ E t).

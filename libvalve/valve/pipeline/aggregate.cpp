@@ -25,9 +25,9 @@ std::string number_cell(double x) {
   return buf;
 }
 
-std::string cell_of(const std::vector<std::string>& row, size_t c) { return c < row.size() ? row[c] : std::string(); }
-
 }  // namespace
+
+std::string table_cell(const std::vector<std::string>& row, size_t c) { return c < row.size() ? row[c] : std::string(); }
 
 size_t table_column(const CsvTable& table, const std::string& column, const std::string& key, const std::string& from) {
   const auto it = std::find(table.header.begin(), table.header.end(), column);
@@ -43,13 +43,13 @@ RowGrouping::RowGrouping(const CsvTable& table, const std::vector<AggregateFilte
 
 bool RowGrouping::kept(const std::vector<std::string>& row) const {
   return std::all_of(filters_.begin(), filters_.end(), [&](const auto& f) {
-    return std::find(f.second->values.begin(), f.second->values.end(), cell_of(row, f.first)) != f.second->values.end();
+    return std::find(f.second->values.begin(), f.second->values.end(), table_cell(row, f.first)) != f.second->values.end();
   });
 }
 
 std::vector<std::string> RowGrouping::group(const std::vector<std::string>& row) const {
   std::vector<std::string> key;
-  for (size_t c : keys_) key.push_back(cell_of(row, c));
+  for (size_t c : keys_) key.push_back(table_cell(row, c));
   return key;
 }
 
@@ -118,7 +118,7 @@ CsvTable aggregate_table(const AggregateSpec& aggregate, const CsvTable& from) {
     if (!grouping.kept(row)) continue;
     const size_t g = group_for(grouping.group(row));
     for (size_t v = 0; v < value_columns.size(); ++v) {
-      const std::string cell = cell_of(row, value_columns[v]);
+      const std::string cell = table_cell(row, value_columns[v]);
       if (const auto x = numeric_cell(cell)) group_values[g][v].push_back(*x);
       group_true[g][v] += cell == "true" ? 1 : 0;
     }

@@ -23,8 +23,7 @@ std::optional<double> numeric_cell(const std::string& text);
 std::string stat_cell(const std::string& stat, std::vector<double> values);
 
 /// The "where" filters and group_by columns of an aggregate or select entry, found in a
-/// table's header (an Error naming `key` when one is missing). A short row (never written
-/// by gather) reads as empty cells.
+/// table's header (an Error naming `key` when one is missing); cells read by table_cell.
 class RowGrouping {
  public:
   RowGrouping(const CsvTable& table, const std::vector<AggregateFilter>& where,
@@ -38,6 +37,9 @@ class RowGrouping {
   std::vector<std::pair<size_t, const AggregateFilter*>> filters_;
   std::vector<size_t> keys_;
 };
+
+/// Cell `c` of `row`; a short row (never written by gather) reads as empty cells.
+std::string table_cell(const std::vector<std::string>& row, size_t c);
 
 /// Index of `column` in the table's header; an Error naming `key` and `from` when absent.
 size_t table_column(const CsvTable& table, const std::string& column, const std::string& key, const std::string& from);

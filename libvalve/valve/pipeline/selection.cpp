@@ -43,19 +43,18 @@ Selection select_table(const SelectSpec& select, const CsvTable& from) {
   if (keys.empty()) groups.push_back({}), group_of[{}] = 0;
   for (const auto& row : from.rows) {
     if (!grouping.kept(row)) continue;
-    auto cell = [&row](size_t c) { return c < row.size() ? row[c] : std::string(); };
     const std::vector<std::string> key = grouping.group(row);
     const auto [it, added] = group_of.emplace(key, groups.size());
     if (added) groups.push_back({key, nullptr, {}});
     Choice& g = groups[it->second];
     const bool meets = std::all_of(bounds.begin(), bounds.end(), [&](const auto& b) {
-      const auto x = numeric_cell(cell(b.first));
+      const auto x = numeric_cell(table_cell(row, b.first));
       return x && *x >= b.second;
     });
     if (!meets) continue;
     std::vector<double> rank;
     for (size_t c : order) {
-      const auto x = numeric_cell(cell(c));
+      const auto x = numeric_cell(table_cell(row, c));
       if (!x) break;
       rank.push_back(*x);
     }
@@ -75,7 +74,7 @@ Selection select_table(const SelectSpec& select, const CsvTable& from) {
     row.push_back(g.row ? "true" : "false");
     for (size_t c = 0; c < from.header.size(); ++c)
       if (std::find(keys.begin(), keys.end(), c) == keys.end())
-        row.push_back(g.row && c < g.row->size() ? (*g.row)[c] : std::string());
+        row.push_back(g.row ? table_cell(*g.row, c) : std::string());
     out.table.rows.push_back(row);
 
     std::vector<std::string> label;
@@ -87,7 +86,7 @@ Selection select_table(const SelectSpec& select, const CsvTable& from) {
     } else {
       std::vector<std::string> values, agreed;
       for (size_t k = 0; k < named.size(); ++k) {
-        const std::string v = named[k] < g.row->size() ? (*g.row)[named[k]] : std::string();
+        const std::string v = table_cell(*g.row, named[k]);
         values.push_back(named_columns[k] + " " + v);
         agreed.push_back(v);
       }
