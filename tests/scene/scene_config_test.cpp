@@ -61,3 +61,18 @@ TEST_CASE("scene defaults taken from other keys are recorded in the internal uni
   CHECK(sc.used["thickness"] == "0.123456789 mm");
   CHECK(sc.used["bending"]["thickness"] == "0.123456789 mm");
 }
+
+TEST_CASE("aortic_root.stiffening_pressure: the preset's 80 mmHg, a value of its own, or none", "[scene][config]") {
+  auto root = [](const json& block) {
+    const json j = {{"mesh", "m.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
+                    {"pressure", {{"value", "80 mmHg"}}}, {"aortic_root", block}};
+    return *parse_scene(j, "s.json", ".").aortic_root;
+  };
+  // configs/materials/aortic_root.json sets 80 mmHg (the seed's calibration point of the tube).
+  REQUIRE(root(json::object()).stiffening_pressure);
+  CHECK(*root(json::object()).stiffening_pressure == Approx(80 * units::mmHg).epsilon(1e-12));
+  CHECK(*root({{"stiffening_pressure", "120 mmHg"}}).stiffening_pressure == Approx(120 * units::mmHg).epsilon(1e-12));
+  CHECK_FALSE(root({{"stiffening_pressure", "none"}}).stiffening_pressure);
+  CHECK_THROWS_WITH(root({{"stiffening_pressure", "never"}}), Catch::Contains("aortic_root.stiffening_pressure"));
+  CHECK_THROWS_WITH(root({{"stiffening_pressure", 80}}), Catch::Contains("aortic_root.stiffening_pressure"));
+}
