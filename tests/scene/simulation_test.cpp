@@ -399,9 +399,12 @@ TEST_CASE("max_wall_seconds bounds a whole closure, not each load increment", "[
         CHECK(res.summary.status == SolverStatus::not_converged);
         CHECK_THAT(res.summary.reason, Catch::Contains("max_wall_seconds"));
         CHECK(res.increments.size() < increments);
-        // Stopped by the shared budget, not its own: the last increment alone took less than
-        // the limit, and the run went past it by at most one step or iteration.
-        CHECK(res.increments.back().summary.wall_seconds < limit);
+        // Stopped by the shared budget, not its own: after the first increment, the last one
+        // alone took less than the limit (what was left of it). Stopped in the first increment
+        // (a loaded machine), the two budgets are one and the same and that increment may pass
+        // the limit by its last iteration. Either way the run went past it by at most one step
+        // or iteration.
+        if (res.increments.size() > 1) CHECK(res.increments.back().summary.wall_seconds < limit);
         CHECK(spent < limit + longest);
       }
     }
