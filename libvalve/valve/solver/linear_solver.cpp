@@ -65,6 +65,23 @@ class AnalysedPattern {
   std::vector<int> outer_, inner_;
 };
 
+// A matrix without its stored zeros. The Jacobian's pattern keeps every contact pair that was
+// ever active (so that it rarely changes), and late in an aortic valve closure 46k of the
+// 78k stored entries are zeros: factorizing the 32k left takes 2.9 ms instead of 7.0 ms
+// (1,179 unknowns, LDLᵀ), more than the symbolic analysis the changing pattern then costs
+// (1.2 ms, and only when it changes). Valid until the next call.
+class StoredZerosDropped {
+ public:
+  const SparseMatrix& of(const SparseMatrix& A) {
+    pruned_ = A;
+    pruned_.prune([](Eigen::Index, Eigen::Index, double v) { return v != 0.0; });
+    return pruned_;
+  }
+
+ private:
+  SparseMatrix pruned_;
+};
+
 // Books one factorization (or preconditioner build) into `stats`; true if it succeeded.
 bool book_factorization(Eigen::ComputationInfo info, std::chrono::steady_clock::time_point t0,
                         LinearSolverStats& stats) {
@@ -84,7 +101,7 @@ class DirectSolver final : public LinearSolver {
   std::string name() const override { return name_; }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
-    pattern_.factorize(dec_, A);
+    pattern_.factorize(dec_, nonzeros_.of(A));
     ok_ = book_factorization(dec_.info(), t0, stats_);
     return ok_;
   }
@@ -103,6 +120,7 @@ class DirectSolver final : public LinearSolver {
   std::string name_;
   bool symmetric_;
   Decomposition dec_;
+  StoredZerosDropped nonzeros_;
   AnalysedPattern pattern_;
   bool ok_ = false;
 };
@@ -178,8 +196,8 @@ class SymmetricPartBiCGStab final : public LinearSolver {
   std::string name() const override { return "ldlt_bicgstab"; }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
-    pattern_.factorize(ldlt_, symmetric_.of(A));
-    it_.compute(A);
+    pattern_.factorize(ldlt_, symmetric_nonzeros_.of(symmetric_.of(A)));
+    it_.compute(nonzeros_.of(A));
     ok_ = book_factorization(ldlt_.info(), t0, stats_);
     return ok_;
   }
@@ -194,6 +212,7 @@ class SymmetricPartBiCGStab final : public LinearSolver {
  private:
   SymmetricPartPreconditioner::Factorization ldlt_;
   SymmetricPart symmetric_;
+  StoredZerosDropped symmetric_nonzeros_, nonzeros_;
   AnalysedPattern pattern_;
   Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner> it_;
   bool ok_ = false;
