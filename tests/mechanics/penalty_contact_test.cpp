@@ -207,6 +207,52 @@ TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the e
   CHECK((ana - num).norm() > 1e-3 * num.norm());
 }
 
+TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-difference one on every closest feature", "[mechanics][penalty_contact][fd]") {
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.offset = 0.05;
+  opt.separation = 0.25;
+  opt.stiffness = 0.1;
+  const VecX v = VecX::Zero(18);
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
+  auto check_exact_jacobian = [&](PenaltyContactTerm& c, VecX y) {
+    for (int i = 0; i < 6; ++i) node3(y, i) = R * node3(y, i);
+    c.set_jacobian_mode(JacobianMode::exact);
+    c.update_couplings(y);
+    const auto exact = analytic_dfdx(c, 6, y, v, 1.0);
+    REQUIRE(c.statistics().active_pairs >= 1);
+    const auto num = numeric_dfdx(c, y, v, 1.0, 1e-7);
+    CHECK(relative_difference(exact, num) < 1e-5);
+  };
+  // Node 3 over two_sheets' lower face (interior), beyond its edge 1-2 (closest point on the
+  // edge) and beyond its vertex 0, with the face tilted by lifting node 1.
+  PenaltyContactTerm sheets(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, 0.95, 0.1), Vec3(-0.08, -0.1, 0.1)}) {
+    INFO("node 3 at " << p.transpose());
+    VecX y = flatten(two_sheets(1.0).points);
+    node3(y, 3) = p;
+    y[3 * 1 + 2] = 0.02;
+    check_exact_jacobian(sheets, y);
+  }
+  // Two free edges 0-1 and 3-4 (right-angled triangles as in the edge-on test, 1 mm apart at
+  // rest), skewed and 0.12 mm apart: closest points inside both edges, then beyond node 1.
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << -1, 0, 0, 1, 0, 0, 0, 0, -2,  //
+      0, -1, 1, 0, 1, 1, 0, 0, 3;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  PenaltyContactTerm edges(m, opt, std::vector<char>(18, 0));
+  for (double shift : {0.3, 1.1}) {
+    INFO("upper edge shifted along x by " << shift);
+    VecX y = flatten(m.points);
+    for (int i : {3, 4, 5}) node3(y, i) += Vec3(shift, 0.2 * (i - 3), -0.88);
+    y[3 * 0 + 1] = 0.05;
+    check_exact_jacobian(edges, y);
+  }
+}
+
 TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the offset", "[mechanics][penalty_contact]") {
   // Random steps of a node over a triangle, scaled to the step bound: the distance along the
   // whole straight path stays above ξ (sampled), and a step 1.5x the bound would get closer.

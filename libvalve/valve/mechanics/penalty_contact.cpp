@@ -152,6 +152,8 @@ struct PairGeometry {
   Vec3 diff;
   double weights[4];
 };
+using PairVector12 = Eigen::Matrix<double, 12, 1>;
+using PairMatrix12 = Eigen::Matrix<double, 12, 12>;
 
 PairGeometry pair_geometry(bool edge, const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3) {
   PairGeometry g;
@@ -165,6 +167,52 @@ PairGeometry pair_geometry(bool edge, const Vec3& p0, const Vec3& p1, const Vec3
     g.weights[0] = 1, g.weights[1] = -w[0], g.weights[2] = -w[1], g.weights[3] = -w[2];
   }
   return g;
+}
+
+// Gradient and Hessian of a pair's distance d = |D|, D = Σ c_j x_j (PairGeometry's diff and
+// weights), over the pair's 12 coordinates. The closest points minimise ½|D|² over the
+// parameters a of the closest feature (the weights strictly inside their bounds: s and u of two
+// edges, the nonzero barycentric weights of a triangle point); eliminating them gives, with
+// C = [c_j I] (3×12), T_i = Σ_j e_ij x_j the feature's tangents (e_i = ∂c/∂a_i) and
+// G_i = [e_ij D + c_j T_i]_j (12),
+//     ∇(½d²) = Cᵀ D,   ∇²(½d²) = CᵀC − G (TᵀT)⁻¹ Gᵀ   (the Schur complement),
+//     ∇d = Cᵀ D / d,   ∇²d = (∇²(½d²) − ∇d ∇dᵀ) / d.
+// False where that does not hold: d ≈ 0, or a feature whose tangents are dependent
+// (parallel edges, a degenerate triangle: the closest points are not unique there).
+bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& g, PairVector12& grad, PairMatrix12& hess) {
+  const double d = g.diff.norm();
+  if (!(d > 1e-12)) return false;
+  double e[2][4] = {};
+  int m = 0;
+  if (edge) {
+    const double s = g.weights[1], u = -g.weights[3];
+    if (s > 0 && s < 1) e[m][0] = -1, e[m][1] = 1, ++m;
+    if (u > 0 && u < 1) e[m][2] = 1, e[m][3] = -1, ++m;
+  } else {
+    int active[3], k = 0;
+    for (int j = 0; j < 3; ++j)
+      if (-g.weights[1 + j] > 0) active[k++] = j;
+    for (int i = 1; i < k; ++i) e[m][1 + active[0]] = 1, e[m][1 + active[i]] = -1, ++m;
+  }
+  Eigen::Matrix<double, 3, 12> C;
+  for (int j = 0; j < 4; ++j) C.block<3, 3>(0, 3 * j) = g.weights[j] * Mat3::Identity();
+  grad = C.transpose() * g.diff / d;
+  hess = C.transpose() * C;
+  if (m > 0) {
+    Eigen::Matrix<double, 3, 2> T = Eigen::Matrix<double, 3, 2>::Zero();
+    Eigen::Matrix<double, 12, 2> G = Eigen::Matrix<double, 12, 2>::Zero();
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < 4; ++j) T.col(i) += e[i][j] * y.segment<3>(3 * j);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < 4; ++j) G.block<3, 1>(3 * j, i) = e[i][j] * g.diff + g.weights[j] * T.col(i);
+    const Eigen::Matrix2d A = m == 2 ? Eigen::Matrix2d(T.transpose() * T)
+                                     : Eigen::Matrix2d(Eigen::Vector2d(T.col(0).squaredNorm(), 1.0).asDiagonal());
+    const double det = A.determinant(), scale = A(0, 0) * A(1, 1);
+    if (!(scale > 0) || !(det > 1e-10 * scale)) return false;
+    hess -= G * A.inverse() * G.transpose();
+  }
+  hess = (hess - grad * grad.transpose()) / d;
+  return hess.allFinite();
 }
 
 }  // namespace
@@ -246,17 +294,29 @@ PenaltyContactTerm::PairVector PenaltyContactTerm::pair_gradient(bool edge, cons
 PenaltyContactTerm::PairMatrix PenaltyContactTerm::projected_pair_hessian(const Contact& c, const VecX& x) const {
   PairVector y;
   for (int j = 0; j < 4; ++j) y.segment<3>(3 * j) = node3(x, c.nodes[j]);
-  const double h = 1e-6;
   PairMatrix H;
-  for (int k = 0; k < 12; ++k) {
-    PairVector yp = y, ym = y;
-    yp[k] += h;
-    ym[k] -= h;
-    H.col(k) = (pair_gradient(c.edge, yp) - pair_gradient(c.edge, ym)) / (2 * h);
+  PairVector grad;
+  const PairGeometry g = pair_geometry(c.edge, y.segment<3>(0), y.segment<3>(3), y.segment<3>(6), y.segment<3>(9));
+  if (distance_derivatives(c.edge, y, g, grad, H)) {
+    double magnitude = 0, slope = 0;
+    pair_force(g.diff.norm(), magnitude, slope);
+    H = slope * grad * grad.transpose() - magnitude * H;  // κ (b'' ∇d ∇dᵀ + b' ∇²d)
+  } else {
+    pair_hessian_by_differences(c.edge, y, H);
   }
   if (jacobian_mode_ == JacobianMode::exact) return 0.5 * (H + H.transpose());
   const Eigen::SelfAdjointEigenSolver<PairMatrix> eig(0.5 * (H + H.transpose()));
   return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+}
+
+void PenaltyContactTerm::pair_hessian_by_differences(bool edge, const PairVector& y, PairMatrix& H) const {
+  const double h = 1e-6;
+  for (int k = 0; k < 12; ++k) {
+    PairVector yp = y, ym = y;
+    yp[k] += h;
+    ym[k] -= h;
+    H.col(k) = (pair_gradient(edge, yp) - pair_gradient(edge, ym)) / (2 * h);
+  }
 }
 
 void PenaltyContactTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian*) const {

@@ -165,6 +165,8 @@ class PenaltyContactTerm final : public ContactForceTerm {
   /// The barrier pair's Hessian, projected to positive semi-definite (below) unless the
   /// Jacobian mode is exact.
   PairMatrix projected_pair_hessian(const Contact& c, const VecX& x) const;
+  /// Central differences of pair_gradient, where the distance's closed-form Hessian does not hold.
+  void pair_hessian_by_differences(bool edge, const PairVector& y, PairMatrix& H) const;
   /// A candidate pair's distance d and unit direction n from the second side (triangle, or
   /// the other edge) to the first (node, or query edge); n = 0 when d vanishes.
   struct PairGap {
