@@ -68,7 +68,9 @@ void parse_static(JsonReader& r, StaticOptions& o) {
   o.iterative_max_iterations = r.integer("iterative_max_iterations", o.iterative_max_iterations, 1, 10000000);
 }
 
-void parse_quasistatic(JsonReader& r, QuasistaticOptions& o) {
+void parse_quasistatic(JsonReader& r, QuasistaticOptions& o, QuasistaticApproach& a) {
+  a.dynamic = r.choice("approach", {"newton", "dynamic"}, std::string(a.dynamic ? "dynamic" : "newton")) == "dynamic";
+  a.settle_tolerance = r.quantity("approach_settle_tolerance", Dimension::length, a.settle_tolerance, 1e-12, 100.0);
   o.relative_residual_tolerance = r.number("relative_residual_tolerance", o.relative_residual_tolerance, 1e-16, 1.0);
   o.max_iterations = r.integer("max_iterations", o.max_iterations, 1, 10000000);
   o.initial_increment = r.number("initial_increment", o.initial_increment, 1e-9, 1.0);
@@ -392,7 +394,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     parse_static(st, sc.statics);
     s.record("static", st.finish());
     JsonReader q = s.object("quasistatic");
-    parse_quasistatic(q, sc.quasistatic);
+    parse_quasistatic(q, sc.quasistatic, sc.quasistatic_approach);
     s.record("quasistatic", q.finish());
     r.record("solver", s.finish());
   }

@@ -120,6 +120,17 @@ struct LeafletMaterialConfig {
   double thickness = 0;  // mm
 };
 
+/// How the quasi-static solver reaches its equilibrium (solver.quasistatic.approach).
+/// `newton`: Newton iterations from the start. `dynamic`: the scene's BDF2 first, stopped once
+/// its monitor nodes settle to `settle_tolerance` over its settle window (50 ms when the scene
+/// sets none), then Newton at the last load: the damped trajectory picks the same closed shape
+/// from nearby starts (Newton's own path through contact branches on rounding), and Newton then
+/// takes it to a static equilibrium.
+struct QuasistaticApproach {
+  bool dynamic = false;
+  double settle_tolerance = 0.05;  // mm
+};
+
 struct SceneConfig {
   std::filesystem::path file, mesh_path;
   ModelKind model = ModelKind::mass_spring;
@@ -146,6 +157,7 @@ struct SceneConfig {
   Bdf2Options bdf2;
   StaticOptions statics;
   QuasistaticOptions quasistatic;
+  QuasistaticApproach quasistatic_approach;
   MonitorConfig monitor;
   std::optional<StrainMarkerConfig> strain_markers;
   bool time_series = false;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <random>
@@ -262,7 +263,51 @@ SimulationResult run_static(const SceneConfig& sc, const TriMesh& mesh, Mechanic
 }
 
 SimulationResult run_quasistatic(const SceneConfig& sc, const TriMesh& mesh, MechanicalSystem& sys,
-                                 const SimulationHooks& hooks) {
+                                 const SimulationHooks& hooks, const std::vector<int>& monitor) {
+  if (sc.quasistatic_approach.dynamic) {
+    // BDF2 over every load step until it settles, then Newton at the last load from there.
+    const auto start = std::chrono::steady_clock::now();
+    SceneConfig dynamic = sc;
+    dynamic.bdf2.settle_tolerance = sc.quasistatic_approach.settle_tolerance;
+    if (dynamic.bdf2.settle_window <= 0) dynamic.bdf2.settle_window = 50;
+    dynamic.bdf2.max_wall_seconds = std::min(sc.bdf2.max_wall_seconds, sc.quasistatic.max_wall_seconds);
+    SimulationResult approach = run_bdf2(dynamic, mesh, sys, SimulationHooks{}, monitor);
+    char line[256];
+    std::snprintf(line, sizeof line, "bdf2 to %g mm settled: %s, %ld steps, %ld factorizations, %.3f s",
+                  sc.quasistatic_approach.settle_tolerance, to_string(approach.summary.status).c_str(),
+                  approach.summary.steps, approach.summary.linear.factorizations, approach.summary.wall_seconds);
+    if (!approach.x.allFinite()) {
+      approach.summary.status = SolverStatus::failed;
+      approach.summary.reason = "the dynamic approach ended at non-finite positions";
+      approach.summary.solver = "quasistatic";
+      approach.summary.approach = line;
+      return approach;
+    }
+    SimulationResult res;
+    res.x = approach.x;
+    const double load = load_steps(sc).back();
+    QuasistaticOptions options = sc.quasistatic;
+    options.max_wall_seconds =
+        std::max(0.0, sc.quasistatic.max_wall_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    SolverSummary newton = solve_quasistatic(sys, res.x, options, load, load);
+    res.summary = newton;
+    res.summary.steps = approach.summary.steps;
+    res.summary.rejected_steps = approach.summary.rejected_steps + newton.rejected_steps;
+    res.summary.jacobian_evaluations += approach.summary.jacobian_evaluations;
+    res.summary.simulated_time_ms = approach.summary.simulated_time_ms;
+    res.summary.linear.factorizations += approach.summary.linear.factorizations;
+    res.summary.linear.solves += approach.summary.linear.solves;
+    res.summary.linear.iterations += approach.summary.linear.iterations;
+    res.summary.linear.failures += approach.summary.linear.failures;
+    res.summary.linear.factor_seconds += approach.summary.linear.factor_seconds;
+    res.summary.linear.solve_seconds += approach.summary.linear.solve_seconds;
+    res.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    res.summary.solver = "quasistatic";
+    res.summary.approach = line;
+    res.increments.push_back(IncrementResult{load, res.summary});
+    if (hooks.on_increment) hooks.on_increment(0, res.x, res.increments.back());
+    return res;
+  }
   return run_equilibrium(sc, mesh, hooks, "quasistatic", sc.quasistatic.max_wall_seconds,
                          [&](VecX& x, double load, double previous, double wall_seconds) {
     QuasistaticOptions options = sc.quasistatic;
@@ -364,7 +409,7 @@ SimulationResult simulate(const SceneConfig& sc, const TriMesh& unperturbed_mesh
   if (wants_dynamics) {
     res = run_bdf2(sc, mesh, sys, hooks, monitor);
   } else if (sc.solver == SolverKind::quasistatic) {
-    res = run_quasistatic(sc, mesh, sys, hooks);
+    res = run_quasistatic(sc, mesh, sys, hooks, monitor);
   } else {
     res = run_static(sc, mesh, sys, hooks);
     if (sc.solver == SolverKind::automatic && (res.summary.status != SolverStatus::ok || !res.x.allFinite())) {

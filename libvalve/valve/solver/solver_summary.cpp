@@ -25,6 +25,7 @@ nlohmann::json SolverSummary::to_json() const {
           {"jacobian_evaluations", jacobian_evaluations},
           {"solver", solver},
           {"fallback_from", fallback_from},
+          {"approach", approach},
           {"linear_solver", linear_solver},
           {"factorizations", linear.factorizations},
           {"linear_solves", linear.solves},

@@ -25,6 +25,7 @@ struct SolverSummary {
   std::string linear_solver;
   std::string solver;          // which solver produced the result (bdf2 | static)
   std::string fallback_from;   // set when the automatic choice fell back to BDF2, with why
+  std::string approach;        // quasi-static: how Newton's start was reached (its BDF2 run), or empty
   double simulated_time_ms = 0;
   double final_step_ms = 0;
   double last_monitor_displacement_mm = 0;
