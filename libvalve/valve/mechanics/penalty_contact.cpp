@@ -125,16 +125,21 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   // Every candidate pair closes by less than 0.8 max(δ, d); with the barrier, by less than
   // 0.8 (d − ξ), so that none reaches the offset.
   const double delta = opt_.separation;
+  // A pair closes by at most twice the largest node step: one with room for that cannot raise
+  // the ratio above what it already is, and is not looked at further.
+  double largest_step = 0;
+  for (int i = 0; i < dx.size() / 3; ++i) largest_step = std::max(largest_step, dx.segment<3>(3 * i).norm());
   size_t k = 0;
   auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
     const PairGap& g = pair_gaps_[k++];
+    const double room = barrier() ? std::max(g.distance - opt_.offset, 1e-300) : std::max(delta, g.distance);
+    if (2 * largest_step <= ratio * 0.8 * room) return;
     double closing = 0;
     for (int a : side_a)
       for (int b : side_b) {
         const Vec3 relative = node3(dx, b) - node3(dx, a);
         closing = std::max(closing, g.normal.isZero() ? relative.norm() : g.normal.dot(relative));
       }
-    const double room = barrier() ? std::max(g.distance - opt_.offset, 1e-300) : std::max(delta, g.distance);
     ratio = std::max(ratio, closing / (0.8 * room));
   };
   const auto& tris = topology_.triangles();
@@ -240,14 +245,28 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     ct.edge = edge;
     if (ct.normal.allFinite()) out.push_back(ct);
   };
+  // With no gaps to record, a pair whose distance where update_couplings last measured every
+  // gap, less twice the largest node move since, is still beyond the reach is skipped: each
+  // point of either primitive moved by at most that much, so their distance by at most twice.
+  // (On the aortic valve 1,100 of 45,000 candidates are active.)
+  const bool bounded =
+      !gaps && contacts_x_.size() == x.size() && pair_gaps_.size() == face_pairs_.size() + edge_pairs_.size();
+  double moved = 0;
+  if (bounded)
+    for (int i = 0; i < x.size() / 3; ++i) moved = std::max(moved, (node3(x, i) - node3(contacts_x_, i)).norm());
+  const double beyond = delta + 2 * moved + 1e-9 * (1 + delta);
+  size_t k = 0;
+  auto out_of_reach = [&] { return bounded && pair_gaps_[k++].distance >= beyond; };
   const auto& tris = topology_.triangles();
   for (const auto& [i, t] : face_pairs_) {
+    if (out_of_reach()) continue;
     const Tri& tri = tris[t];
     const int nodes[4] = {i, tri[0], tri[1], tri[2]};
     add(false, nodes, node3(x, i), node3(x, tri[0]), node3(x, tri[1]), node3(x, tri[2]));
   }
   const auto& edges = topology_.edges();
   for (const auto& [be, e] : edge_pairs_) {
+    if (out_of_reach()) continue;
     const int nodes[4] = {edges[be].first, edges[be].second, edges[e].first, edges[e].second};
     add(true, nodes, node3(x, nodes[0]), node3(x, nodes[1]), node3(x, nodes[2]), node3(x, nodes[3]));
   }
