@@ -75,6 +75,19 @@ void check_force_is_minus_energy_gradient(PenaltyContactTerm& c, const VecX& x, 
   }
 }
 
+// Two triangles at right angles, one in y = 0 below z = 0, one in x = 0 above z = gap, whose
+// free edges 0-1 (along x at z = 0) and 3-4 (along y at z = gap) cross gap mm apart.
+TriMesh crossing_free_edges(double gap) {
+  TriMesh m;
+  m.points.resize(6, 3);
+  m.points << -1, 0, 0, 1, 0, 0, 0, 0, -2,  //
+      0, -1, gap, 0, 1, gap, 0, 0, 2 + gap;
+  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
+  m.leaflet = {0, 1};
+  m.fill_defaults();
+  return m;
+}
+
 }  // namespace
 
 TEST_CASE("closest point on a triangle and between segments match dense sampling", "[mechanics][penalty_contact]") {
@@ -234,15 +247,9 @@ TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-differenc
     y[3 * 1 + 2] = 0.02;
     check_exact_jacobian(sheets, y);
   }
-  // Two free edges 0-1 and 3-4 (right-angled triangles as in the edge-on test, 1 mm apart at
-  // rest), skewed and 0.12 mm apart: closest points inside both edges, then beyond node 1.
-  TriMesh m;
-  m.points.resize(6, 3);
-  m.points << -1, 0, 0, 1, 0, 0, 0, 0, -2,  //
-      0, -1, 1, 0, 1, 1, 0, 0, 3;
-  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
-  m.leaflet = {0, 1};
-  m.fill_defaults();
+  // Two free edges 1 mm apart at rest, skewed and brought 0.12 mm apart: closest points inside
+  // both edges, then beyond node 1.
+  const TriMesh m = crossing_free_edges(1.0);
   PenaltyContactTerm edges(m, opt, std::vector<char>(18, 0));
   for (double shift : {0.3, 1.1}) {
     INFO("upper edge shifted along x by " << shift);
@@ -306,16 +313,9 @@ TEST_CASE("penalty contact Jacobian: exact over a fixed face, symmetric and non-
 }
 
 TEST_CASE("penalty contact stops free edges crossing edge-on", "[mechanics][penalty_contact]") {
-  // Two triangles at right angles (one in y = 0 below z = 0, one in x = 0 above z = 0.1)
-  // whose free edges 0-1 and 3-4 cross 0.1 mm apart while every node is at least 1 mm from
-  // the other triangle: only the edge pair sees it.
-  TriMesh m;
-  m.points.resize(6, 3);
-  m.points << -1, 0, 0, 1, 0, 0, 0, 0, -2,  //
-      0, -1, 0.1, 0, 1, 0.1, 0, 0, 2.1;
-  m.triangles = {Tri(0, 1, 2), Tri(3, 4, 5)};
-  m.leaflet = {0, 1};
-  m.fill_defaults();
+  // The free edges cross 0.1 mm apart while every node is at least 1 mm from the other
+  // triangle: only the edge pair sees it.
+  const TriMesh m = crossing_free_edges(0.1);
   PenaltyContactOptions faces_only;
   faces_only.edge_contact = false;
   check_edges_pushed_apart(forces_seen_only_with(m, faces_only, PenaltyContactOptions{}), {3, 4}, {0, 1}, {2, 5});

@@ -34,6 +34,14 @@ void write_fake_stages(const fs::path& dir) {
   fs::permissions(dir / "valve-broken", fs::perms::owner_all);
 }
 
+// Runs in root/out with the fake stages of root/bin.
+RunnerOptions fake_stage_options(const fs::path& root) {
+  RunnerOptions options;
+  options.out_dir = root / "out";
+  options.stage_dirs = {root / "bin"};
+  return options;
+}
+
 PipelineSpec write_and_load(const fs::path& dir, const std::string& text) {
   write_text(dir / "P.json", text);
   return load_pipeline(dir / "P.json");
@@ -53,9 +61,7 @@ TEST_CASE("runner: allow_exit, failed runs skip later steps, logs, summary and g
     "gather": [{"csv": "values.csv", "summary": "report.summary.json",
                 "columns": {"code": "${code}", "value": "summary:value", "status": "summary:status"}}]
   })");
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   const PipelineOutcome result = run_pipeline(spec, options);
 
   CHECK(result.exit_code == 3);
@@ -108,9 +114,7 @@ TEST_CASE("runner: a select entry writes its table and line, prints the line and
     "select": [{"csv": "choice.csv", "from": "sizes.csv", "group_by": [], "at_least": {"value": 3},
                 "minimize": ["size"]}]
   })");
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   const PipelineOutcome result = run_pipeline(spec, options);
   REQUIRE(result.exit_code == 0);
   REQUIRE(result.selects.size() == 1);
@@ -132,9 +136,7 @@ TEST_CASE("runner: stage names cannot carry placeholders, broken and killed stag
                     Catch::Contains("steps[0].stage: expected a stage name valve-<name>"));
   const auto spec = write_and_load(tmp.path(), R"({
     "steps": [{"name": "a", "stage": "valve-broken", "args": []}]})");
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   const auto broken = run_pipeline(spec, options);
   CHECK(broken.exit_code == 3);
   CHECK(broken.runs[0].steps[0].exit_code == 127);
@@ -153,9 +155,7 @@ TEST_CASE("runner: a missing stage is rejected before anything is written", "[pi
   TempDir tmp("missing");
   const auto spec = write_and_load(tmp.path(), R"({"steps": [
     {"stage": "valve-exit", "args": ["0"]}, {"stage": "valve-no-such-stage-here", "args": []}]})");
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   write_fake_stages(tmp.path() / "bin");
   CHECK_THROWS_AS(run_pipeline(spec, options), InputError);
   CHECK_THROWS_WITH(run_pipeline(spec, options),
@@ -188,9 +188,7 @@ TEST_CASE("runner: each run starts from an empty folder", "[pipeline]") {
   write_fake_stages(tmp.path() / "bin");
   const auto spec = write_and_load(tmp.path(), R"({"steps": [{"stage": "valve-exit", "args": ["0"]}],
     "gather": [{"csv": "t.csv", "summary": "report.summary.json", "columns": {"v": "summary:value"}}]})");
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   // A summary left by an earlier invocation must not be gathered as if this run made it.
   write_text(options.out_dir / "runs/single/report.summary.json", R"({"value": 99})");
   write_text(options.out_dir / "unrelated.txt", "kept");
@@ -301,9 +299,7 @@ TEST_CASE("runner: required pipelines run first, cached like any other, and a fa
   })");
   REQUIRE(spec.required.size() == 1);
   CHECK(spec.required[0].spec->steps.size() == 1);
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   options.only_runs = {"single"};  // names a run of this pipeline, not of up.json
   const PipelineOutcome first = run_pipeline(spec, options);
   CHECK(first.status == "ok");
@@ -411,9 +407,7 @@ TEST_CASE("runner: shared steps run once for all runs, and a rerun of one reruns
               {"name": "use", "stage": "valve-use", "args": ["${run_dir}/prep/value.txt", "${k}", "--out", "${run_dir}/use"]}],
     "gather": [{"csv": "t.csv", "summary": "use/use.summary.json",
                 "columns": {"k": "${k}", "value": "summary:value", "prep": "file:prep/prep.json:made"}}]})");
-  RunnerOptions options;
-  options.out_dir = tmp.path() / "out";
-  options.stage_dirs = {tmp.path() / "bin"};
+  RunnerOptions options = fake_stage_options(tmp.path());
   auto lines = [](const std::string& text, const std::string& word) {
     size_t n = 0;
     for (size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) ++n;

@@ -76,3 +76,19 @@ TEST_CASE("aortic_root.stiffening_pressure: the preset's 80 mmHg, a value of its
   CHECK_THROWS_WITH(root({{"stiffening_pressure", "never"}}), Catch::Contains("aortic_root.stiffening_pressure"));
   CHECK_THROWS_WITH(root({{"stiffening_pressure", 80}}), Catch::Contains("aortic_root.stiffening_pressure"));
 }
+
+TEST_CASE("solver.quasistatic.approach: newton by default, dynamic with its settle tolerance, anything else refused", "[scene][config]") {
+  auto approach = [](const json& block) {
+    const json j = {{"mesh", "m.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
+                    {"pressure", {{"value", "80 mmHg"}}}, {"solver", {{"type", "quasistatic"}, {"quasistatic", block}}}};
+    return parse_scene(j, "s.json", ".").quasistatic_approach;
+  };
+  CHECK_FALSE(approach(json::object()).dynamic);
+  CHECK(approach(json::object()).settle_tolerance == 0.05);
+  const auto dynamic = approach({{"approach", "dynamic"}, {"approach_settle_tolerance", "0.2 mm"}});
+  CHECK(dynamic.dynamic);
+  CHECK(dynamic.settle_tolerance == Approx(0.2).epsilon(1e-12));
+  CHECK_THROWS_WITH(approach({{"approach", "bdf2"}}), Catch::Contains("solver.quasistatic.approach"));
+  CHECK_THROWS_WITH(approach({{"approach_settle_tolerance", "0 mm"}}),
+                    Catch::Contains("solver.quasistatic.approach_settle_tolerance"));
+}

@@ -210,8 +210,9 @@ bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& 
       for (int j = 0; j < 4; ++j) T.col(i) += e[i][j] * y.segment<3>(3 * j);
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < 4; ++j) G.block<3, 1>(3 * j, i) = e[i][j] * g.diff + g.weights[j] * T.col(i);
-    const Eigen::Matrix2d A = m == 2 ? Eigen::Matrix2d(T.transpose() * T)
-                                     : Eigen::Matrix2d(Eigen::Vector2d(T.col(0).squaredNorm(), 1.0).asDiagonal());
+    // TᵀT over the m free parameters, the identity beyond (G's unused column is zero).
+    Eigen::Matrix2d A = Eigen::Matrix2d::Identity();
+    A.topLeftCorner(m, m) = T.leftCols(m).transpose() * T.leftCols(m);
     const double det = A.determinant(), scale = A(0, 0) * A(1, 1);
     if (!(scale > 0) || !(det > 1e-10 * scale)) return false;
     hess -= G * A.inverse() * G.transpose();

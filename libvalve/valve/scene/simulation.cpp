@@ -237,12 +237,7 @@ SimulationResult run_equilibrium(const SceneConfig& sc, const TriMesh& mesh, con
     } else {
       const LinearSolverStats before = res.summary.linear;
       res.summary.accumulate(inc.summary);
-      res.summary.linear.factorizations += before.factorizations;
-      res.summary.linear.solves += before.solves;
-      res.summary.linear.iterations += before.iterations;
-      res.summary.linear.failures += before.failures;
-      res.summary.linear.factor_seconds += before.factor_seconds;
-      res.summary.linear.solve_seconds += before.solve_seconds;
+      res.summary.linear += before;
     }
     res.increments.push_back(inc);
     if (hooks.on_increment) hooks.on_increment(static_cast<int>(k), res.x, inc);
@@ -267,6 +262,7 @@ SimulationResult run_quasistatic(const SceneConfig& sc, const TriMesh& mesh, Mec
   if (sc.quasistatic_approach.dynamic) {
     // BDF2 over every load step until it settles, then Newton at the last load from there.
     const auto start = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
     SceneConfig dynamic = sc;
     dynamic.bdf2.settle_tolerance = sc.quasistatic_approach.settle_tolerance;
     if (dynamic.bdf2.settle_window <= 0) dynamic.bdf2.settle_window = 50;
@@ -287,21 +283,15 @@ SimulationResult run_quasistatic(const SceneConfig& sc, const TriMesh& mesh, Mec
     res.x = approach.x;
     const double load = load_steps(sc).back();
     QuasistaticOptions options = sc.quasistatic;
-    options.max_wall_seconds =
-        std::max(0.0, sc.quasistatic.max_wall_seconds - std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    options.max_wall_seconds = std::max(0.0, sc.quasistatic.max_wall_seconds - elapsed());
     SolverSummary newton = solve_quasistatic(sys, res.x, options, load, load);
     res.summary = newton;
     res.summary.steps = approach.summary.steps;
     res.summary.rejected_steps = approach.summary.rejected_steps + newton.rejected_steps;
     res.summary.jacobian_evaluations += approach.summary.jacobian_evaluations;
     res.summary.simulated_time_ms = approach.summary.simulated_time_ms;
-    res.summary.linear.factorizations += approach.summary.linear.factorizations;
-    res.summary.linear.solves += approach.summary.linear.solves;
-    res.summary.linear.iterations += approach.summary.linear.iterations;
-    res.summary.linear.failures += approach.summary.linear.failures;
-    res.summary.linear.factor_seconds += approach.summary.linear.factor_seconds;
-    res.summary.linear.solve_seconds += approach.summary.linear.solve_seconds;
-    res.summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    res.summary.linear += approach.summary.linear;
+    res.summary.wall_seconds = elapsed();
     res.summary.solver = "quasistatic";
     res.summary.approach = line;
     res.increments.push_back(IncrementResult{load, res.summary});

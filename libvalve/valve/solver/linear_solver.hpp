@@ -46,6 +46,12 @@ struct LinearSolverStats {
   long iterations = 0;      // Krylov iterations (iterative solvers)
   long failures = 0;        // factorizations or solves that failed
   double factor_seconds = 0, solve_seconds = 0;
+  /// Adds another solver's counts (a run whose phases or load steps each had a solver).
+  LinearSolverStats& operator+=(const LinearSolverStats& o) {
+    factorizations += o.factorizations, solves += o.solves, iterations += o.iterations, failures += o.failures;
+    factor_seconds += o.factor_seconds, solve_seconds += o.solve_seconds;
+    return *this;
+  }
 };
 
 class LinearSolver {
