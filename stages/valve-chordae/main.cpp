@@ -1,7 +1,7 @@
 // valve-chordae --mesh LEAFLETS.vtp (--from CHORDAE.json | --markups CURVE.mrk.json ... |
 //               --labels LABELS.nrrd) --out DIR [--snap-tolerance 1.5] [--merge-distance 0.3]
-//               [--insertion-distance 1] [--min-spur 0.75] [--scale SEGMENT=FACTOR ...]
-//               [--name chordae] [--quiet]
+//               [--insertion-distance 1] [--min-spur 0.75] [--convergence-clearance 5]
+//               [--scale SEGMENT=FACTOR ...] [--name chordae] [--quiet]
 // Puts a chordae network on a leaflet mesh (seed 5.2.2): every insertion is snapped to the
 // nearest mesh node (an insertion farther than --snap-tolerance mm is an error naming the
 // chord), rest lengths come from the open geometry times a per-chord scale (--scale i=f on
@@ -13,7 +13,9 @@
 // From a segmentation (valve-segment's labels.nrrd) the chordae label is thinned to curves and
 // read as a graph (chordae/chordae_extraction.hpp): ends within --insertion-distance mm of
 // leaflet tissue are insertions, other ends papillary tips, branches shorter than --min-spur
-// mm thinning noise; chords are typed by where their insertions land, as for markups.
+// mm thinning noise; a junction at least --convergence-clearance mm from leaflet tissue and
+// farther from it than every vertex it joins is a tip too (chords of one muscle meeting; 0
+// turns this off); chords are typed by where their insertions land, as for markups.
 #include <cstdio>
 #include <filesystem>
 
@@ -35,7 +37,7 @@ namespace fs = std::filesystem;
 int main(int argc, char** argv) {
   return run_stage("valve-chordae", kStageUsage, [&] {
     const std::vector<std::string> keys{"mesh", "from", "markups", "labels", "snap-tolerance", "merge-distance",
-                                        "insertion-distance", "min-spur", "scale", "name"};
+                                        "insertion-distance", "min-spur", "convergence-clearance", "scale", "name"};
     CommandLine cl(argc, argv, stage_flags({"out", "config"}, keys), {"quiet"});
     const fs::path out = cl.require("out");
     StageArguments args(cl, keys);
@@ -51,6 +53,7 @@ int main(int argc, char** argv) {
     ChordaeExtractionOptions extraction;
     extraction.insertion_distance_mm = args.length_mm("insertion-distance", extraction.insertion_distance_mm, 0, 20);
     extraction.min_spur_mm = args.length_mm("min-spur", extraction.min_spur_mm, 0, 20);
+    extraction.convergence_clearance_mm = args.length_mm("convergence-clearance", extraction.convergence_clearance_mm, 0, 50);
     ChordaePlacementOptions placement;
     placement.snap_tolerance_mm = args.length_mm("snap-tolerance", placement.snap_tolerance_mm, 0, 100);
     const double merge = args.length_mm("merge-distance", 0.3, 0, 10);

@@ -78,3 +78,35 @@ TEST_CASE("chordae from labels: no chordae, or none reaching a leaflet, is an er
     if (l == label_leaflet) l = label_background;
   CHECK_THROWS_AS(chordae_from_labels(floating, {}, "labels.nrrd"), InputError);
 }
+
+TEST_CASE("chordae from labels: chords meeting below the leaflet without a muscle are tethered where they meet", "[chordae][extraction]") {
+  // Three chords rise from one point 10 mm below the slab, with no papillary tissue. Thinning
+  // leaves a 1 mm stub below their meeting; the many chords of a scanned muscle leave none,
+  // which pruning spurs up to 1.5 mm reproduces. The meeting point is then a junction without
+  // an end, farther from the leaflet than the insertions it joins, so it is the tip.
+  LabelMap m = drawing();
+  for (auto& l : m.labels)
+    if (l == label_chordae || l == label_other_tissue) l = label_background;
+  const Vec3 meeting(6, 3, 4);
+  for (const Vec3& end : {Vec3(2.5, 1.5, 13.6), Vec3(9.5, 1.5, 13.6), Vec3(6, 4.5, 13.6)}) paint_tube(m, meeting, end, 0.35, label_chordae);
+  ChordaeExtractionOptions options;
+  options.min_spur_mm = 1.5;
+  ChordaeExtractionSummary s;
+  const ChordaeNetwork net = chordae_from_labels(m, options, "labels.nrrd", &s);
+  CHECK(s.convergence_tips == 1);
+  CHECK(s.papillary_tips == 1);
+  CHECK(s.insertions == 3);
+  REQUIRE(net.segments.size() == 3);
+  // The tubes overlap for about a millimetre above the point where their axes meet.
+  for (const ChordPoint& p : net.points)
+    if (p.kind == ChordPointKind::papillary_tip) CHECK((p.position - meeting).norm() < 1.0);
+  for (const ChordSegment& seg : net.segments) CHECK(net.points[seg.from].kind == ChordPointKind::papillary_tip);
+
+  // The meeting point is 9.6 mm from the slab: a clearance above that, or 0, finds no tip, and
+  // chords that join leaflet to leaflet only are refused.
+  ChordaeExtractionOptions strict = options;
+  strict.convergence_clearance_mm = 10;
+  CHECK_THROWS_AS(chordae_from_labels(m, strict, "labels.nrrd"), InputError);
+  strict.convergence_clearance_mm = 0;
+  CHECK_THROWS_AS(chordae_from_labels(m, strict, "labels.nrrd"), InputError);
+}

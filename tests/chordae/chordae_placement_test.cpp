@@ -71,11 +71,12 @@ TEST_CASE("chordae placement: scales naming no segment and far insertions are re
 
 TEST_CASE("chordae extraction summary as the stage reports it", "[chordae]") {
   ChordaeExtractionSummary s;
-  s.chordae_voxels = 1200, s.skeleton_voxels = 300, s.spurs_removed = 4, s.tips_on_other_tissue = 1;
+  s.chordae_voxels = 1200, s.skeleton_voxels = 300, s.spurs_removed = 4, s.tips_on_other_tissue = 1, s.convergence_tips = 2;
   const nlohmann::json j = to_json(s);
   CHECK(j["chordae_voxels"] == 1200);
   CHECK(j["skeleton_voxels"] == 300);
   CHECK(j["spurs_removed"] == 4);
   CHECK(j["tips_on_other_tissue"] == 1);
-  CHECK(j.size() == 7);
+  CHECK(j["convergence_tips"] == 2);
+  CHECK(j.size() == 8);
 }

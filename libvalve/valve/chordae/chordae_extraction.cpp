@@ -4,11 +4,13 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <limits>
 #include <set>
 #include <unordered_map>
 
 #include "valve/core/error.hpp"
 #include "valve/imaging/skeleton.hpp"
+#include "valve/mesh/nearest_points.hpp"
 
 namespace valve {
 namespace {
@@ -88,6 +90,11 @@ ChordaeNetwork chordae_from_labels(const LabelMap& labels, const ChordaeExtracti
     ++summary.junctions;
   }
   const int nvert = static_cast<int>(vertex_voxels.size());
+  auto vertex_position = [&](int x) {
+    Vec3 p = Vec3::Zero();
+    for (int v : vertex_voxels[x]) p += point(v) / static_cast<double>(vertex_voxels[x].size());
+    return p;
+  };
 
   // Edges: voxel paths between vertices (each traced once; loops without a vertex ignored).
   std::vector<Edge> edges;
@@ -168,10 +175,40 @@ ChordaeNetwork chordae_from_labels(const LabelMap& labels, const ChordaeExtracti
                   : ChordPointKind::papillary_tip;
   }
 
-  // Components with a tip and an insertion; hop distance from the nearest tip for direction.
   std::vector<std::vector<int>> incident(nvert);
   for (std::size_t e = 0; e < edges.size(); ++e)
     if (edges[e].alive) incident[edges[e].a].push_back(static_cast<int>(e)), incident[edges[e].b].push_back(static_cast<int>(e));
+
+  // Convergence tips: where the chords of one papillary muscle meet, thinning leaves a
+  // junction, not an end. A junction farther from leaflet tissue than every vertex it is
+  // joined to is where its chords come from, so it is a tip; without this, the chords of a
+  // muscle the scan shows only as their meeting point would hang leaflet to leaflet. A
+  // junction joined to a tip end is a branch of that tip's chord (an open leaflet can hang
+  // closer to the muscle than the branch is).
+  if (options.convergence_clearance_mm > 0) {
+    std::vector<Vec3> leaflet_points;
+    for (int k = 0; k < g.size[2]; ++k)
+      for (int j = 0; j < g.size[1]; ++j)
+        for (int i = 0; i < g.size[0]; ++i)
+          if (labels.labels[g.linear_index(i, j, k)] == label_leaflet) leaflet_points.push_back(g.physical_point(Vec3(i, j, k)));
+    MatX3 leaflet(static_cast<Eigen::Index>(leaflet_points.size()), 3);
+    for (std::size_t i = 0; i < leaflet_points.size(); ++i) leaflet.row(static_cast<Eigen::Index>(i)) = leaflet_points[i].transpose();
+    const NearestPoints nearest_leaflet(leaflet);
+    std::vector<double> clearance(nvert, std::numeric_limits<double>::infinity());  // no leaflet: no tip is added
+    for (int x = 0; x < nvert; ++x)
+      if (degree[x] > 0 && !leaflet_points.empty()) nearest_leaflet.nearest(vertex_position(x), &clearance[x]);
+    for (int x = 0; x < nvert; ++x) {
+      if (degree[x] < 3 || clearance[x] < options.convergence_clearance_mm) continue;
+      bool farthest = true;
+      for (int e : incident[x]) {
+        const int y = edges[e].a == x ? edges[e].b : edges[e].a;
+        farthest = farthest && clearance[y] < clearance[x] && !(degree[y] == 1 && kind[y] == ChordPointKind::papillary_tip);
+      }
+      if (farthest) kind[x] = ChordPointKind::papillary_tip, ++summary.convergence_tips;
+    }
+  }
+
+  // Components with a tip and an insertion; hop distance from the nearest tip for direction.
   std::vector<int> component(nvert, -1);
   std::vector<char> keep_component;
   for (int s = 0; s < nvert; ++s) {
@@ -213,8 +250,7 @@ ChordaeNetwork chordae_from_labels(const LabelMap& labels, const ChordaeExtracti
     if (degree[x] == 0 || !keep_component[component[x]]) continue;
     ChordPoint p;
     p.kind = kind[x];
-    p.position = Vec3::Zero();
-    for (int v : vertex_voxels[x]) p.position += point(v) / static_cast<double>(vertex_voxels[x].size());
+    p.position = vertex_position(x);
     p.name = std::string(to_string(kind[x])) + " " + std::to_string(x);
     point_of[x] = static_cast<int>(net.points.size());
     net.points.push_back(p);

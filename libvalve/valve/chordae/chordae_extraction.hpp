@@ -11,6 +11,10 @@
 //     segmentation's opening cuts each chord a little short of the tissue it joins); any
 //     other end is a papillary tip too (where the scan holds no muscle, chords end in free
 //     space on the ventricular side). Tips on other tissue are counted separately.
+//   - Convergence tips: a junction at least convergence_clearance_mm from leaflet tissue
+//     and farther from it than every vertex it is joined to, none of them a tip end, is a
+//     papillary tip as well (the chords of one muscle meet there, and thinning leaves a
+//     junction rather than an end); 0 turns the rule off.
 //   - Components of the graph without a tip or without an insertion cannot tether a leaflet
 //     and are dropped (counted).
 // Every segment is a straight chord between two vertices, directed from the tip side (fewer
@@ -24,12 +28,13 @@ namespace valve {
 struct ChordaeExtractionOptions {
   double insertion_distance_mm = 1.0;
   double min_spur_mm = 0.75;
+  double convergence_clearance_mm = 5.0;
 };
 
 struct ChordaeExtractionSummary {
   long chordae_voxels = 0, skeleton_voxels = 0;
   int junctions = 0, spurs_removed = 0, components = 0, components_dropped = 0;
-  int insertions = 0, papillary_tips = 0, tips_on_other_tissue = 0;
+  int insertions = 0, papillary_tips = 0, tips_on_other_tissue = 0, convergence_tips = 0;
   double total_length_mm = 0;  // sum of straight segment lengths kept
 };
 

@@ -53,7 +53,8 @@ nlohmann::json to_json(const ChordaeExtractionSummary& s) {
           {"spurs_removed", s.spurs_removed},
           {"components", s.components},
           {"components_dropped", s.components_dropped},
-          {"tips_on_other_tissue", s.tips_on_other_tissue}};
+          {"tips_on_other_tissue", s.tips_on_other_tissue},
+          {"convergence_tips", s.convergence_tips}};
 }
 
 }  // namespace valve
