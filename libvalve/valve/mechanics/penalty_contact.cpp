@@ -127,8 +127,7 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   const double delta = opt_.separation;
   // A pair closes by at most twice the largest node step: one with room for that cannot raise
   // the ratio above what it already is, and is not looked at further.
-  double largest_step = 0;
-  for (int i = 0; i < dx.size() / 3; ++i) largest_step = std::max(largest_step, dx.segment<3>(3 * i).norm());
+  const double largest_step = largest_node_norm(dx);
   size_t k = 0;
   auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
     const PairGap& g = pair_gaps_[k++];
@@ -252,9 +251,7 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
   // (On the aortic valve 1,100 of 45,000 candidates are active.)
   const bool bounded =
       !gaps && contacts_x_.size() == x.size() && pair_gaps_.size() == face_pairs_.size() + edge_pairs_.size();
-  double moved = 0;
-  if (bounded)
-    for (int i = 0; i < x.size() / 3; ++i) moved = std::max(moved, (node3(x, i) - node3(contacts_x_, i)).norm());
+  const double moved = bounded ? largest_node_norm(x - contacts_x_) : 0.0;
   const double beyond = delta + 2 * moved + 1e-9 * (1 + delta);
   size_t k = 0;
   auto out_of_reach = [&] { return bounded && pair_gaps_[k++].distance >= beyond; };
