@@ -11,16 +11,23 @@ using namespace valve;
 
 namespace {
 
-void paint_tube(LabelMap& m, const Vec3& a, const Vec3& b, double radius, std::uint8_t label) {
+// Labels every background voxel whose centre (mm) is `inside`.
+template <class Inside>
+void paint(LabelMap& m, const Inside& inside, std::uint8_t label) {
   const ImageGeometry& g = m.geometry;
   for (int k = 0; k < g.size[2]; ++k)
     for (int j = 0; j < g.size[1]; ++j)
-      for (int i = 0; i < g.size[0]; ++i) {
-        const Vec3 p = g.physical_point(Vec3(i, j, k)), d = b - a;
-        const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
-        if ((a + t * d - p).norm() <= radius && m.labels[g.linear_index(i, j, k)] == label_background)
+      for (int i = 0; i < g.size[0]; ++i)
+        if (m.labels[g.linear_index(i, j, k)] == label_background && inside(g.physical_point(Vec3(i, j, k))))
           m.labels[g.linear_index(i, j, k)] = label;
-      }
+}
+
+void paint_tube(LabelMap& m, const Vec3& a, const Vec3& b, double radius, std::uint8_t label) {
+  paint(m, [&](const Vec3& p) {
+    const Vec3 d = b - a;
+    const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return (a + t * d - p).norm() <= radius;
+  }, label);
 }
 
 // 0.2 mm voxels over 12 × 6 × 16 mm; leaflet slab z in [14, 15] mm, papillary block z in [0, 2] mm.
@@ -109,4 +116,19 @@ TEST_CASE("chordae from labels: chords meeting below the leaflet without a muscl
   CHECK_THROWS_AS(chordae_from_labels(m, strict, "labels.nrrd"), InputError);
   strict.convergence_clearance_mm = 0;
   CHECK_THROWS_AS(chordae_from_labels(m, strict, "labels.nrrd"), InputError);
+}
+
+TEST_CASE("chordae from labels: a branch point is not a tip because the open leaflet hangs near its muscle", "[chordae][extraction]") {
+  // The drawing's chord, with a piece of leaflet hanging 1.5 mm beside its papillary end: the
+  // branch point at (6, 3, 8) is then farther from leaflet tissue (4.7 mm) than the tip end and
+  // both insertions, but it is joined to that tip end, so it stays a branch.
+  LabelMap m = drawing();
+  paint(m, [](const Vec3& p) { return p.x() >= 7.5 && p.x() <= 8 && p.z() >= 2.6 && p.z() <= 3.4; }, label_leaflet);
+  ChordaeExtractionOptions options;
+  options.convergence_clearance_mm = 4;
+  ChordaeExtractionSummary s;
+  const ChordaeNetwork net = chordae_from_labels(m, options, "labels.nrrd", &s);
+  CHECK(s.convergence_tips == 0);
+  CHECK(s.papillary_tips == 1);
+  CHECK(net.count(ChordPointKind::branch) == 1);
 }
