@@ -12,10 +12,7 @@ namespace valve {
 
 namespace {
 
-constexpr double kMinProximalStep = 1e-14, kMaxProximalStep = 1e14;
-// Exact contact Hessians from this proximal step on (ms²): the M/δ term is then too weak to
-// matter and the iteration is Newton's, which the projection's error would make linear.
-constexpr double kExactJacobianProximalStep = 1e4;
+constexpr double kMinProximalStep = 1e-14;
 
 }  // namespace
 
@@ -55,7 +52,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   SystemMatrix system_matrix;
   VecX f, fe, dx, b, f_trial;
   double delta = opt.initial_proximal_step;
-  double exact_from = kExactJacobianProximalStep;
+  ExactHessianSchedule exact_hessians;
   bool exact = false;
 
   // Newton iterations at a fixed load factor; true when the residual tolerance is met.
@@ -67,7 +64,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
     for (int it = 0; it < opt.max_iterations; ++it) {
       if (wall() > opt.max_wall_seconds) return false;
       const State s{x, v, load, 0.0};
-      exact = delta >= exact_from;
+      exact = exact_hessians.exact_at(delta);
       sys.set_jacobian_mode(exact ? JacobianMode::exact : JacobianMode::projected);
       if (!sys.evaluate(s, f, true, false)) return false;
       ++sum.jacobian_evaluations;
@@ -78,12 +75,12 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       fe = sys.external_force(s);  // frozen for this iteration (the follower pressure)
       double pi0 = 0;
       if (!sys.internal_energy(s, pi0) || !std::isfinite(pi0)) return false;
-      // A direction that fails with exact contact Hessians is taken again with projected ones
-      // at the same δ; exact ones come back once δ has grown fourfold.
+      // A direction that fails (its solve, or its descent) with exact contact
+      // Hessians is taken again with projected ones at the same δ.
       auto retry_projected = [&] {
         if (!exact) return false;
         exact = false;
-        exact_from = 4 * delta;
+        exact_hessians.failed_at(delta);
         sys.set_jacobian_mode(JacobianMode::projected);
         return sys.evaluate(s, f, true, false);
       };
