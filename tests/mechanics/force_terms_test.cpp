@@ -7,6 +7,7 @@
 #include "valve/material/bilinear_fit.hpp"
 #include "valve/mechanics/damping.hpp"
 #include "valve/mechanics/mass_spring.hpp"
+#include "valve/mechanics/mechanical_system.hpp"
 #include "valve/mechanics/membrane_fe.hpp"
 #include "valve/mechanics/nodal_load.hpp"
 #include "valve/mechanics/pressure.hpp"
@@ -180,4 +181,30 @@ TEST_CASE("damping and edge loads", "[mechanics]") {
   CHECK(fx == Approx(0.06 * 0.5 * 2.0));
   CHECK(fy == Approx(0.02 * 0.5 * 2.0));
   CHECK(std::abs(e.sum()) < 1e-15);
+}
+
+TEST_CASE("without the load stiffness, the system Jacobian is the stored energy's Hessian alone", "[mechanics]") {
+  // The quasi-static solver's fallback direction: Φ_k freezes the follower pressure, so its
+  // Hessian has the membrane's stiffness and not the pressure's. The forces stay whole.
+  const TriMesh m = grid_mesh();
+  VecX x = perturbed(m, 0.08, 6, 1.2);
+  for (int i = 0; i < m.num_nodes(); ++i) x[3 * i + 2] += 0.3 * std::sin(x[3 * i]);
+  const VecX v = VecX::Zero(x.size());
+  MechanicalSystem sys(m, 1e-3, 0.5);
+  auto fe = std::make_unique<MembraneFETerm>(m, std::make_shared<FungLaw>(kAortic), 0.5);
+  auto p = std::make_unique<PressureTerm>(m, 0.0106, true);
+  const Eigen::MatrixXd membrane = analytic_dfdx(*fe, m.num_nodes(), x, v, 1.0);
+  const Eigen::MatrixXd pressure = analytic_dfdx(*p, m.num_nodes(), x, v, 1.0);
+  REQUIRE(pressure.cwiseAbs().maxCoeff() > 1e-3 * membrane.cwiseAbs().maxCoeff());
+  sys.add_term(std::move(fe));
+  sys.add_term(std::move(p));
+  sys.finalize();
+  VecX with, without;
+  REQUIRE(sys.evaluate(State{x, v, 1.0, 0}, with, true, false));
+  const Eigen::MatrixXd whole(sys.dfdx().matrix());
+  REQUIRE(sys.evaluate(State{x, v, 1.0, 0}, without, true, false, false));
+  const Eigen::MatrixXd stored(sys.dfdx().matrix());
+  CHECK(relative_difference(whole, membrane + pressure) < 1e-12);
+  CHECK(relative_difference(stored, membrane) < 1e-12);
+  CHECK((with - without).cwiseAbs().maxCoeff() == 0.0);
 }

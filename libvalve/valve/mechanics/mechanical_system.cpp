@@ -41,7 +41,7 @@ void MechanicalSystem::finalize() {
   dfdv_ = BlockJacobian(n_, {});
 }
 
-bool MechanicalSystem::evaluate(const State& s, VecX& f, bool want_dfdx, bool want_dfdv) {
+bool MechanicalSystem::evaluate(const State& s, VecX& f, bool want_dfdx, bool want_dfdv, bool load_stiffness) {
   if (want_dfdx) {
     bool grown = false;
     for (auto& t : terms_) grown |= t->update_couplings(s.x);
@@ -52,7 +52,8 @@ bool MechanicalSystem::evaluate(const State& s, VecX& f, bool want_dfdx, bool wa
   if (want_dfdv) dfdv_.set_zero();
   for (size_t k = 0; k < terms_.size(); ++k) {
     const auto t0 = std::chrono::steady_clock::now();
-    terms_[k]->add(s, f, want_dfdx ? &dfdx_ : nullptr, want_dfdv ? &dfdv_ : nullptr);
+    const bool jacobian = want_dfdx && (load_stiffness || !terms_[k]->is_external_load());
+    terms_[k]->add(s, f, jacobian ? &dfdx_ : nullptr, want_dfdv ? &dfdv_ : nullptr);
     timings_[k].seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     ++timings_[k].calls;
   }

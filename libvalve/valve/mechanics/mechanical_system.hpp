@@ -42,7 +42,9 @@ class MechanicalSystem {
 
   /// f = Σ terms; fills dfdx()/dfdv() when asked. A Jacobian evaluation first lets terms
   /// with state-dependent couplings (contact) refresh them, rebuilding the pattern if needed. Returns false if any entry of f is not finite.
-  bool evaluate(const State& s, VecX& f, bool want_dfdx, bool want_dfdv);
+  /// With `load_stiffness` false, dfdx() leaves out the applied loads' own stiffness (the
+  /// follower pressure's): the Hessian of the stored energy alone.
+  bool evaluate(const State& s, VecX& f, bool want_dfdx, bool want_dfdv, bool load_stiffness = true);
   /// Critical damping follows the tangent: recompute its coefficients from the current
   /// dfdx() and update f and dfdv() to match. No-op for other damping modes.
   void update_critical_damping(const State& s, VecX& f);

@@ -14,9 +14,10 @@
 //   work depends on the path once the free edge moves.)
 // * The proximal (inertia) term M/δ regularises: it makes the Newton matrix
 //   H = −∂f/∂x + M/δ positive definite where the membrane is slack or compressed and
-//   shortens steps far from equilibrium. δ shrinks ×4 when H is not positive definite or the
-//   line search fails; how it grows is ProximalStepRule's. Near equilibrium the iteration is
-//   Newton's (δ → ∞).
+//   shortens steps far from equilibrium. A direction that does not descend on Φ_k is taken
+//   again at the same δ without the applied loads' stiffness (Φ_k's own Hessian); δ shrinks
+//   ×4 when that fails too, or the solve or the line search fails; how it grows is
+//   ProximalStepRule's. Near equilibrium the iteration is Newton's (δ → ∞).
 // * Contact Hessians: projected to positive semi-definite while δ < 1e4 ms², exact from
 //   there on, so that the last iterations converge quadratically (the projection's error made
 //   them linear: 200 iterations from 1e-2 to 1e-6 on the sample mitral closure). A direction
