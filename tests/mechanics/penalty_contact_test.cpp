@@ -220,6 +220,32 @@ TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the e
   CHECK((ana - num).norm() > 1e-3 * num.norm());
 }
 
+TEST_CASE("barrier contact: a pair within the reach where the solve starts is excluded too", "[mechanics][penalty_contact]") {
+  // Rest 1 mm apart, the solve starting 0.1 mm apart (as two leaflets' attachments sewn onto
+  // the same stretch of distended root wall): the pair is left out from the start on, so it
+  // neither pushes nor bounds the step, as a pair close at rest would not.
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.separation = 0.25;
+  const VecX start = flatten(two_sheets(0.1).points);
+  PenaltyContactTerm told(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  PenaltyContactTerm untold(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  told.start_at(start);
+  told.update_couplings(start);
+  untold.update_couplings(start);
+  CHECK(forces(untold, start).norm() > 0);
+  CHECK(forces(told, start).norm() == 0);
+  VecX down = VecX::Zero(18);
+  down[3 * 3 + 2] = -0.09;  // node 3 toward the other sheet's face, to 0.01 mm
+  CHECK(untold.step_ratio(start, down) > 1);
+  CHECK(told.step_ratio(start, down) < 1);
+  // A pair beyond the reach at the start still acts once it comes close.
+  PenaltyContactTerm far_start(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  far_start.start_at(flatten(two_sheets(0.5).points));
+  far_start.update_couplings(start);
+  CHECK(forces(far_start, start).norm() > 0);
+}
+
 TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-difference one on every closest feature", "[mechanics][penalty_contact][fd]") {
   PenaltyContactOptions opt;
   opt.potential = ContactPotential::barrier;

@@ -10,7 +10,8 @@
 namespace valve {
 
 ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach)
-    : self_(self_contact), between_(between_leaflets), incidence_only_(rest_reach >= 0), triangles_(mesh.triangles) {
+    : self_(self_contact), between_(between_leaflets), incidence_only_(rest_reach >= 0), rest_reach_(rest_reach),
+      triangles_(mesh.triangles) {
   const int n = mesh.num_nodes();
   leaflet_ = mesh.leaflet.size() == triangles_.size() ? mesh.leaflet : std::vector<int>(triangles_.size(), 0);
   node_leaflets_.assign(n, {});
@@ -33,28 +34,33 @@ ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool be
     sum += (mesh.points.row(e.a) - mesh.points.row(e.b)).norm();
   }
   mean_edge_ = topo.edges.empty() ? 0.0 : sum / topo.edges.size();
+  exclude_close_at(flatten(mesh.points));
+}
+
+void ContactTopology::exclude_close_at(const VecX& x) {
   if (!incidence_only_) return;
-  const VecX x = flatten(mesh.points);
-  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach, BroadPhaseMethod::spatial_hash)) {
+  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash)) {
     const Tri& tri = triangles_[t];
     const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
     const Vec3 w = closest_point_weights(p, a, b, c);
-    if ((p - (w[0] * a + w[1] * b + w[2] * c)).norm() <= rest_reach) rest_close_faces_.emplace_back(i, t);
+    if ((p - (w[0] * a + w[1] * b + w[2] * c)).norm() <= rest_reach_) rest_close_faces_.emplace_back(i, t);
   }
   std::sort(rest_close_faces_.begin(), rest_close_faces_.end());
+  rest_close_faces_.erase(std::unique(rest_close_faces_.begin(), rest_close_faces_.end()), rest_close_faces_.end());
   std::vector<int> all(edges_.size());
   for (size_t e = 0; e < edges_.size(); ++e) all[e] = static_cast<int>(e);
-  for (const auto& [e1, e2] : edge_box_pairs(x, edges_, all, rest_reach)) {
+  for (const auto& [e1, e2] : edge_box_pairs(x, edges_, all, rest_reach_)) {
     const auto [a, b] = edges_[e1];
     const auto [c, d] = edges_[e2];
     const auto [s1, s2] = closest_segment_parameters(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
     const Vec3 gap = node3(x, a) + s1 * (node3(x, b) - node3(x, a)) - node3(x, c) - s2 * (node3(x, d) - node3(x, c));
-    if (gap.norm() > rest_reach) continue;
+    if (gap.norm() > rest_reach_) continue;
     std::array<int, 4> key{a, b, c, d};
     if (std::make_pair(c, d) < std::make_pair(a, b)) key = {c, d, a, b};
     rest_close_edges_.push_back(key);
   }
   std::sort(rest_close_edges_.begin(), rest_close_edges_.end());
+  rest_close_edges_.erase(std::unique(rest_close_edges_.begin(), rest_close_edges_.end()), rest_close_edges_.end());
 }
 
 bool ContactTopology::close_at_rest(int node, int triangle) const {

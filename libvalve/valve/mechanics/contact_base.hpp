@@ -49,6 +49,11 @@ class ContactTopology {
   /// `rest_reach` < 0: the 1-ring rule; >= 0: incidence, and pairs within it at rest.
   ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach = -1);
 
+  /// With a rest reach: also exclude the pairs within it at positions x (where a solve starts,
+  /// e.g. after the aortic root's distension has sewn two leaflets' attachments onto the same
+  /// stretch of wall). No-op under the 1-ring rule.
+  void exclude_close_at(const VecX& x);
+
   /// True when node `node` must not interact with triangle `triangle`.
   bool excluded(int node, int triangle) const;
   /// True when edge (a, b) must not interact with edge (c, d): they share a vertex or one
@@ -76,7 +81,8 @@ class ContactTopology {
 
   bool self_, between_;
   bool incidence_only_ = false;                          // rest reach given
-  std::vector<std::pair<int, int>> rest_close_faces_;    // (node, triangle) within it at rest, sorted
+  double rest_reach_ = -1;
+  std::vector<std::pair<int, int>> rest_close_faces_;    // (node, triangle) within it at rest or the start, sorted
   std::vector<std::array<int, 4>> rest_close_edges_;     // (a, b, c, d), a < b, c < d, (a, b) < (c, d), sorted
   std::vector<Tri> triangles_;
   std::vector<int> leaflet_;                     // per triangle

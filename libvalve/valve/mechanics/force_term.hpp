@@ -62,6 +62,9 @@ class ForceTerm {
     const double m = max_step_length();
     return std::isfinite(m) ? largest_node_norm(dx) / m : 0;
   }
+  /// The positions a solve starts from, before its first evaluation (the contact barrier
+  /// excludes the pairs already within its reach there).
+  virtual void start_at(const VecX& x) { (void)x; }
   /// Whether this is an applied load (pressure, edge loads) rather than a material or
   /// constraint response; solvers use the applied load to scale residual tolerances.
   virtual bool is_external_load() const { return false; }

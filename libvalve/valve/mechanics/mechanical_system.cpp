@@ -101,6 +101,10 @@ bool MechanicalSystem::internal_energy(const State& s, double& e, std::string* m
   return true;
 }
 
+void MechanicalSystem::start_at(const VecX& x) {
+  for (auto& t : terms_) t->start_at(x);
+}
+
 void MechanicalSystem::set_jacobian_mode(JacobianMode mode) {
   for (auto& t : terms_) t->set_jacobian_mode(mode);
 }

@@ -69,6 +69,8 @@ class MechanicalSystem {
   const std::vector<std::unique_ptr<ForceTerm>>& terms() const { return terms_; }
   /// Smallest max_step_length() of the terms (infinity if none limits the step).
   double max_step_length() const;
+  /// Tells every term where the solve starts (ForceTerm::start_at).
+  void start_at(const VecX& x);
   /// Every term's Jacobian mode (ForceTerm::set_jacobian_mode) from the next evaluation on.
   void set_jacobian_mode(JacobianMode mode);
   /// The largest step_ratio() of the terms for a step dx from x, the state of the last

@@ -45,6 +45,11 @@ PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContact
       if (opt_.interior_edges || topology_.boundary_edge()[e]) query_edges_.push_back(static_cast<int>(e));
 }
 
+void PenaltyContactTerm::start_at(const VecX& x) {
+  topology_.exclude_close_at(x);
+  built_at_.resize(0);  // the candidate list honours the new exclusions from its next build
+}
+
 void PenaltyContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
   pairs.insert(pairs.end(), coupled_.begin(), coupled_.end());
 }

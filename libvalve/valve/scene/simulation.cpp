@@ -392,6 +392,7 @@ SimulationResult simulate(const SceneConfig& sc, const TriMesh& unperturbed_mesh
     distended.initial = unflatten(x);
   }
   const TriMesh& mesh = sc.aortic_root ? distended : input_mesh;
+  sys.start_at(flatten(mesh.start_positions()));
   const auto monitor = resolve_monitor(sc, mesh);
   SimulationResult res;
   // A per-step convergence rule (the biaxial protocol) is a property of the dynamics.
