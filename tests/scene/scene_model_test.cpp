@@ -8,40 +8,15 @@
 #include "valve/mesh/quality.hpp"
 #include "valve/scene/scene_model.hpp"
 #include "valve/scene/simulation.hpp"
+#include "support/annulus_scene.hpp"
 
 using namespace valve;
 
-namespace {
-// Two rings of n nodes (radii 12 and 6 mm) in z = 0 joined by triangles; outer ring fixed.
-TriMesh annulus_membrane(int n, double scale) {
-  TriMesh m;
-  m.points.resize(3 * n, 3);
-  for (int r = 0; r < 3; ++r)
-    for (int i = 0; i < n; ++i) {
-      const double t = 2 * M_PI * (i + 0.5 * r) / n, radius = scale * (12.0 - 3.0 * r);
-      m.points.row(r * n + i) << radius * std::cos(t), radius * std::sin(t), 0;
-    }
-  for (int r = 0; r < 2; ++r)
-    for (int i = 0; i < n; ++i) {
-      const int j = (i + 1) % n, a = r * n + i, b = r * n + j, c = (r + 1) * n + i, d = (r + 1) * n + j;
-      m.triangles.emplace_back(a, b, c);
-      m.triangles.emplace_back(b, d, c);
-    }
-  m.fill_defaults();
-  for (int i = 0; i < n; ++i) m.roles[i] = NodeRole::fixed;
-  return m;
-}
-}  // namespace
-
 TEST_CASE("annulus motion moves the annulus to the closed ring before any pressure", "[scene]") {
-  const TriMesh open = annulus_membrane(48, 1.0), closed = annulus_membrane(48, 0.9);
-  const json j = {{"mesh", "open.vtp"},
-                  {"model", "mass_spring"},
-                  {"material", "mitral_leaflet_table51"},
-                  {"annulus_motion", {{"closed_mesh", "closed.vtp"}, {"register", false}}},
-                  {"solver", {{"type", "static"}}}};
-  const SceneConfig sc = parse_scene(j, "scene.json", ".");
-  const SceneModel model = prepare_scene_model(sc, open, &closed);
+  const test::AnnulusScene scene;
+  const TriMesh& open = scene.open;
+  const SceneConfig& sc = scene.config;
+  const SceneModel& model = scene.model;
   REQUIRE(model.annulus);
   CHECK(model.annulus->nodes.size() == 48);
   CHECK(model.annulus->mean_motion_mm == Approx(1.2).margin(0.02));  // 10 % of 12 mm

@@ -95,4 +95,24 @@ inline double relative_difference(const Eigen::MatrixXd& A, const Eigen::MatrixX
   return (A - B).cwiseAbs().maxCoeff() / std::max(B.cwiseAbs().maxCoeff(), 1e-300);
 }
 
+// Two rings of n nodes (radii 12 and 6 mm) in z = 0 joined by triangles; outer ring fixed.
+inline TriMesh annulus_membrane(int n, double scale) {
+  TriMesh m;
+  m.points.resize(3 * n, 3);
+  for (int r = 0; r < 3; ++r)
+    for (int i = 0; i < n; ++i) {
+      const double t = 2 * M_PI * (i + 0.5 * r) / n, radius = scale * (12.0 - 3.0 * r);
+      m.points.row(r * n + i) << radius * std::cos(t), radius * std::sin(t), 0;
+    }
+  for (int r = 0; r < 2; ++r)
+    for (int i = 0; i < n; ++i) {
+      const int j = (i + 1) % n, a = r * n + i, b = r * n + j, c = (r + 1) * n + i, d = (r + 1) * n + j;
+      m.triangles.emplace_back(a, b, c);
+      m.triangles.emplace_back(b, d, c);
+    }
+  m.fill_defaults();
+  for (int i = 0; i < n; ++i) m.roles[i] = NodeRole::fixed;
+  return m;
+}
+
 }  // namespace valve::test

@@ -62,16 +62,16 @@ TermCost measure_term_cost(const SceneConfig& sc, const TriMesh& mesh, ModelKind
   return c;
 }
 
-ClosureCost measure_closure(const SceneConfig& scene, const TriMesh& mesh, ModelKind model, int reps) {
+ClosureCost measure_closure(const SceneConfig& scene, const SceneModel& scene_model, ModelKind model, int reps) {
   SceneConfig sc = scene;
   sc.model = model;
-  auto sys = build_system(sc, mesh);
+  auto sys = build_system(sc, scene_model);
   ClosureCost out;
   const auto t0 = std::chrono::steady_clock::now();
-  const SimulationResult res = simulate(sc, mesh, *sys);
+  const SimulationResult res = simulate(sc, scene_model.mesh, *sys);
   out.solve_seconds = seconds_since(t0);
   out.solver = res.summary.to_json();
-  out.x = res.x;
+  out.x = scene_model.leaflet_state(res.x);
   // One factorization of the same system: the static tangent at the solution, with the
   // solver the run used.
   VecX f;
@@ -81,7 +81,8 @@ ClosureCost measure_closure(const SceneConfig& scene, const TriMesh& mesh, Model
   for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += 1e-6 * std::max(1.0, std::abs(A.coeff(i, i)));
   VecX b = f;
   apply_constraints(A, b, sys->constrained());
-  const LinearSolverType type = res.summary.solver == "bdf2" ? sc.bdf2.linear_solver : sc.statics.linear_solver;
+  // The linear solver the run used, by the name its summary gives.
+  const LinearSolverType type = parse_linear_solver(res.summary.linear_solver);
   auto solver = make_linear_solver(type, 1e-10, 2000, sys->num_dofs());
   if (solver->needs_symmetric()) A = symmetric_part(A);
   solver->factorize(A);  // symbolic analysis once, as in a run

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "valve/scene/scene_config.hpp"
+#include "valve/scene/scene_model.hpp"
 #include "valve/mesh/tri_mesh.hpp"
 
 namespace valve {
@@ -29,8 +30,10 @@ struct ClosureCost {
   VecX x;
 };
 
-/// Runs the scene with `model` and measures one factorization of the final tangent.
-ClosureCost measure_closure(const SceneConfig& scene, const TriMesh& mesh, ModelKind model, int repetitions);
+/// Runs the scene with `model` on the scene's whole model (leaflets, chordae, annulus motion:
+/// prepare_scene_model) and measures one factorization of the final tangent. `x` holds the
+/// leaflet nodes' final positions.
+ClosureCost measure_closure(const SceneConfig& scene, const SceneModel& scene_model, ModelKind model, int repetitions);
 
 /// One broad-phase method on one mesh (seed 4.2.3; valve-bench runs it on 660, 2,600 and
 /// 10,000 triangles): median wall time of broad_phase_pairs() at the mesh's positions with the
