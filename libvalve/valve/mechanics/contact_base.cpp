@@ -10,8 +10,7 @@
 namespace valve {
 
 ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach)
-    : self_(self_contact), between_(between_leaflets), incidence_only_(rest_reach >= 0), rest_reach_(rest_reach),
-      triangles_(mesh.triangles) {
+    : self_(self_contact), between_(between_leaflets), rest_reach_(rest_reach), triangles_(mesh.triangles) {
   const int n = mesh.num_nodes();
   leaflet_ = mesh.leaflet.size() == triangles_.size() ? mesh.leaflet : std::vector<int>(triangles_.size(), 0);
   node_leaflets_.assign(n, {});
@@ -38,7 +37,7 @@ ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool be
 }
 
 void ContactTopology::exclude_close_at(const VecX& x) {
-  if (!incidence_only_) return;
+  if (!incidence_only()) return;
   for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash)) {
     const Tri& tri = triangles_[t];
     const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
@@ -88,7 +87,7 @@ bool ContactTopology::leaflet_rule_excludes(int node, int leaflet) const {
 
 bool ContactTopology::excluded(int node, int triangle) const {
   const Tri& t = triangles_[triangle];
-  if (incidence_only_) {
+  if (incidence_only()) {
     if (node == t[0] || node == t[1] || node == t[2] || close_at_rest(node, triangle)) return true;
   } else {
     for (int k = 0; k < 3; ++k)
@@ -98,7 +97,7 @@ bool ContactTopology::excluded(int node, int triangle) const {
 }
 
 bool ContactTopology::excluded_edges(int a, int b, int c, int d) const {
-  if (incidence_only_) {
+  if (incidence_only()) {
     if (a == c || a == d || b == c || b == d || edges_close_at_rest(a, b, c, d)) return true;
   } else {
     for (int u : {a, b})

@@ -73,6 +73,7 @@ class ContactTopology {
   const std::vector<char>& boundary_edge() const { return boundary_edge_; }
 
  private:
+  bool incidence_only() const { return rest_reach_ >= 0; }
   bool in_ring(int node, int other) const;
   bool leaflet_rule_excludes(int node, int leaflet) const;
 
@@ -80,8 +81,7 @@ class ContactTopology {
   bool edges_close_at_rest(int a, int b, int c, int d) const;
 
   bool self_, between_;
-  bool incidence_only_ = false;                          // rest reach given
-  double rest_reach_ = -1;
+  double rest_reach_ = -1;                               // < 0: the 1-ring rule
   std::vector<std::pair<int, int>> rest_close_faces_;    // (node, triangle) within it at rest or the start, sorted
   std::vector<std::array<int, 4>> rest_close_edges_;     // (a, b, c, d), a < b, c < d, (a, b) < (c, d), sorted
   std::vector<Tri> triangles_;

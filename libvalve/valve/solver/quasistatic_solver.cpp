@@ -75,8 +75,8 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       fe = sys.external_force(s);  // frozen for this iteration (the follower pressure)
       double pi0 = 0;
       if (!sys.internal_energy(s, pi0) || !std::isfinite(pi0)) return false;
-      // A direction that fails (its solve, or its descent) with exact contact
-      // Hessians is taken again with projected ones at the same δ.
+      // A direction that fails (its solve, or its descent) with exact contact Hessians is taken
+      // again with projected ones at the same δ.
       auto retry_projected = [&] {
         if (!exact) return false;
         exact = false;
