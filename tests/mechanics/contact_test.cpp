@@ -392,3 +392,47 @@ TEST_CASE("a stiffening root balances the pressure at the stiffness-index law's 
   for (int k = 0; k < y.size(); ++k) y[k] += jitter(rng);
   CHECK(relative_difference(analytic_dfdx(springs, m.num_nodes(), y, v, 1.0), numeric_dfdx(springs, y, v, 1.0, 1e-6)) < 1e-6);
 }
+
+TEST_CASE("a root given its own stiffness index follows ln(P / Ps) = beta (D / Ds - 1) above Ps", "[mechanics][root]") {
+  const TriMesh m = root_band();
+  const RootGeometry g = root_geometry(m, Vec3::Zero(), Vec3::UnitZ());
+  const double E = 0.18, t = 1.6, r0 = 10 / 1.15, Ps = 80 * units::mmHg, beta = 20;
+  const double rs = r0 / (1 - Ps * r0 / (E * t));
+  // By hand: r0 = 8.6957 mm, Ps r0 / (E t) = 0.32202, so Ds = 25.652 mm at 80 mmHg; 200 mmHg
+  // gives Ds (1 + ln 2.5 / 20) = 26.827 mm, 120 mmHg 26.172 mm.
+  CHECK(2 * rs == Approx(25.652).margin(0.001));
+  RootSpringTerm springs(g, m.points, E, t, r0, rs, beta);
+  CHECK(springs.stiffness_index() == beta);
+  CHECK(2 * free_tube_radius(200 * units::mmHg, E, t, r0, rs, beta) == Approx(26.827).margin(0.001));
+  CHECK(2 * free_tube_radius(120 * units::mmHg, E, t, r0, rs, beta) == Approx(26.172).margin(0.001));
+  CHECK(free_tube_radius(40 * units::mmHg, E, t, r0, rs, beta) == Approx(r0 / (1 - 40 * units::mmHg * r0 / (E * t))));
+  CHECK_THROWS_AS(RootSpringTerm(g, m.points, E, t, r0, rs, -1.0), InputError);
+
+  const VecX v = VecX::Zero(3 * m.num_nodes());
+  auto tube_at = [&](double radius) {
+    VecX x = flatten(m.points) * (radius / 10);
+    for (int i = 0; i < m.num_nodes(); ++i) x[3 * i + 2] = m.points(i, 2);
+    return x;
+  };
+  for (double mmHg : {40.0, 120.0, 200.0}) {
+    INFO(mmHg << " mmHg");
+    RootPressureTerm pressure(g, mmHg * units::mmHg);
+    const VecX x = tube_at(free_tube_radius(mmHg * units::mmHg, E, t, r0, rs, beta));
+    VecX f = VecX::Zero(x.size()), fp = VecX::Zero(x.size());
+    springs.add(State{x, v, 1.0, 0}, f, nullptr, nullptr);
+    pressure.add(State{x, v, 1.0, 0}, fp, nullptr, nullptr);
+    CHECK((f + fp).norm() < 1e-9 * fp.norm());
+  }
+  // The hoop force stays continuous at rs (its slope jumps unless beta = r0 / (rs - r0)).
+  auto radial_force = [&](double radius) {
+    VecX f = VecX::Zero(3 * m.num_nodes());
+    springs.add(State{tube_at(radius), v, 1.0, 0}, f, nullptr, nullptr);
+    return f[0];
+  };
+  CHECK(radial_force(rs + 1e-9) == Approx(radial_force(rs - 1e-9)).epsilon(1e-7));
+  VecX y = tube_at(1.02 * rs);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> jitter(-0.1, 0.1);
+  for (int k = 0; k < y.size(); ++k) y[k] += jitter(rng);
+  CHECK(relative_difference(analytic_dfdx(springs, m.num_nodes(), y, v, 1.0), numeric_dfdx(springs, y, v, 1.0, 1e-6)) < 1e-6);
+}

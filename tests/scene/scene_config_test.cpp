@@ -75,6 +75,9 @@ TEST_CASE("aortic_root.stiffening_pressure: the preset's 80 mmHg, a value of its
   CHECK_FALSE(root({{"stiffening_pressure", "none"}}).stiffening_pressure);
   CHECK_THROWS_WITH(root({{"stiffening_pressure", "never"}}), Catch::Contains("aortic_root.stiffening_pressure"));
   CHECK_THROWS_WITH(root({{"stiffening_pressure", 80}}), Catch::Contains("aortic_root.stiffening_pressure"));
+  CHECK(*root({{"stiffness_index", 12.5}}).stiffness_index == 12.5);
+  CHECK_THROWS_WITH(root({{"stiffness_index", -3}}), Catch::Contains("aortic_root.stiffness_index"));
+  CHECK_THROWS_WITH(root({{"stiffness_index", "stiff"}}), Catch::Contains("aortic_root.stiffness_index"));
 }
 
 TEST_CASE("solver.quasistatic.approach: newton by default, dynamic with its settle tolerance, anything else refused", "[scene][config]") {

@@ -80,13 +80,15 @@ RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Ve
 }
 
 RootSpringTerm::RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0,
-                               std::optional<double> stiffening_radius)
+                               std::optional<double> stiffening_radius, std::optional<double> stiffness_index)
     : g_(g), r0_(r0), rs_(stiffening_radius) {
   if (rs_) {
     if (!(std::isfinite(*rs_) && *rs_ > r0))
       throw InputError("aortic_root: expected a stiffening radius above the unloaded radius " + format_number(r0) +
                        " mm, found " + format_number(*rs_) + " mm");
-    beta_ = root_stiffness_index(r0, *rs_);
+    beta_ = stiffness_index.value_or(root_stiffness_index(r0, *rs_));
+    if (!(std::isfinite(beta_) && beta_ > 0))
+      throw InputError("aortic_root.stiffness_index: expected a positive number, found " + format_number(beta_));
   }
   for (size_t k = 0; k < g_.nodes.size(); ++k) {
     k_.push_back(E * t * g_.wall_area[k] / (g_.mesh_radius * r0));
@@ -123,11 +125,12 @@ void RootPressureTerm::add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJa
     add_radial(g_, g_.nodes[k], s.x, affine(0.0, s.load * pressure_ * g_.wall_area[k] / g_.mesh_radius), f, dfdx);
 }
 
-double free_tube_radius(double pressure, double E, double t, double r0, std::optional<double> stiffening_radius) {
+double free_tube_radius(double pressure, double E, double t, double r0, std::optional<double> stiffening_radius,
+                        std::optional<double> stiffness_index) {
   const double c = pressure * r0 / (E * t);
   const double linear = c < 1 ? r0 / (1 - c) : std::numeric_limits<double>::infinity();
   if (stiffening_radius && linear > *stiffening_radius) {
-    const double rs = *stiffening_radius, beta = root_stiffness_index(r0, rs);
+    const double rs = *stiffening_radius, beta = stiffness_index.value_or(root_stiffness_index(r0, rs));
     const double ps = E * t * (rs - r0) / (r0 * rs);  // the linear tube's pressure at r_s
     return rs * (1 + std::log(pressure / ps) / beta);
   }

@@ -23,8 +23,10 @@
 // P_s), the hoop tension per unit length N = σ t is, beyond r_s,
 //     N(r) = N_s (r / r_s) exp(β (r / r_s − 1)),   N_s = E t (r_s − r0) / r0,
 // so that the free tube follows P = N / r = P_s exp(β (r / r_s − 1)); below r_s it stays
-// E t (r − r0) / r0. β = r0 / (r_s − r0) makes N and dN/dr continuous at r_s: β is the
-// linear tube's own stiffness index at P_s, kept constant above it instead of falling.
+// E t (r − r0) / r0. By default β = r0 / (r_s − r0), which makes N and dN/dr continuous at
+// r_s: the linear tube's own stiffness index at P_s, kept constant above it instead of
+// falling. A β of the user's (a measured stiffness index) keeps N continuous and lets its
+// slope jump at r_s.
 #include <optional>
 #include <vector>
 
@@ -52,9 +54,11 @@ double radius_from_axis(const RootGeometry& g, const Vec3& p);
 class RootSpringTerm final : public ForceTerm {
  public:
   /// `E` MPa, `t` mm, `r0` unloaded radius mm; rest positions from `points`; `stiffening_radius`
-  /// r_s > r0 (mm) where the hoop tension turns exponential (see above), or none.
+  /// r_s > r0 (mm) where the hoop tension turns exponential (see above), or none;
+  /// `stiffness_index` β above r_s (none: the linear tube's own, root_stiffness_index).
   RootSpringTerm(const RootGeometry& g, const MatX3& points, double E, double t, double r0,
-                 std::optional<double> stiffening_radius = std::nullopt);
+                 std::optional<double> stiffening_radius = std::nullopt,
+                 std::optional<double> stiffness_index = std::nullopt);
   /// The stiffness index β above r_s (0 without stiffening).
   double stiffness_index() const { return beta_; }
   std::string name() const override { return "root_springs"; }
@@ -76,9 +80,11 @@ class RootSpringTerm final : public ForceTerm {
 inline double root_stiffness_index(double r0, double stiffening_radius) { return r0 / (stiffening_radius - r0); }
 
 /// Radius of the free tube (no leaflets) at pressure P (MPa): r0 / (1 − P r0 / (E t)) while
-/// the linear law holds; beyond the stiffening radius r_s (when given), r_s (1 + ln(P / P_s) / β).
+/// the linear law holds; beyond the stiffening radius r_s (when given), r_s (1 + ln(P / P_s) / β)
+/// with β `stiffness_index` (none: the linear tube's own).
 /// Throws NumericalError when the linear tube has no equilibrium (P r0 ≥ E t).
-double free_tube_radius(double pressure, double E, double t, double r0, std::optional<double> stiffening_radius);
+double free_tube_radius(double pressure, double E, double t, double r0, std::optional<double> stiffening_radius,
+                        std::optional<double> stiffness_index = std::nullopt);
 
 class RootPressureTerm final : public ForceTerm {
  public:

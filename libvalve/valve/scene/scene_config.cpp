@@ -217,6 +217,8 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
         pr.has("stiffening_pressure")
             ? std::optional<double>(pr.quantity("stiffening_pressure", Dimension::pressure, std::nullopt, 1e-9, 1e3))
             : std::nullopt;
+    const std::optional<double> stiffness_index_default =
+        pr.has("stiffness_index") ? std::optional<double>(pr.number("stiffness_index", 1.0, 1e-3, 1e3)) : std::nullopt;
     ac.source = pr.string("source", std::string(""));
     pr.string("name", std::string(""));
     pr.string("note", std::string(""));
@@ -236,6 +238,9 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       ac.stiffening_pressure = a.quantity("stiffening_pressure", Dimension::pressure, *stiffening_default, 1e-9, 1e3);
     }
     a.document("stiffening_pressure", "pressure or \"none\"", "the preset's, else none");
+    if (a.has("stiffness_index") || stiffness_index_default)
+      ac.stiffness_index = a.number("stiffness_index", stiffness_index_default.value_or(1.0), 1e-3, 1e3);
+    a.document("stiffness_index", "number (β)", "the preset's, else the linear tube's own at the stiffening pressure");
     ac.pressure = sc.pressure ? a.quantity("pressure", Dimension::pressure, sc.pressure->value, 0.0, 1e3)
                               : a.quantity("pressure", Dimension::pressure, std::nullopt, 0.0, 1e3);
     a.document("pressure", "", "the scene's pressure");

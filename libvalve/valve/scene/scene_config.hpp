@@ -73,6 +73,8 @@ struct AorticRootConfig {
   /// MPa: above the linear tube's radius at this pressure the wall stiffens exponentially
   /// (mechanics/aortic_root.hpp); none keeps the seed's linear tube at every pressure.
   std::optional<double> stiffening_pressure;
+  /// β above it (mechanics/aortic_root.hpp); none: the linear tube's own at that pressure.
+  std::optional<double> stiffness_index;
   std::string preset, source;
 };
 /// Bending stiffness (mechanics/bending.hpp): flexural rigidity D = E_b t³ / 12.

@@ -320,7 +320,8 @@ RootDistension distend_root(const SceneConfig& sc, const TriMesh& mesh, VecX& x)
   if (rc.stiffening_pressure)
     stiffening_radius = free_tube_radius(*rc.stiffening_pressure, rc.youngs_modulus, rc.wall_thickness, r0, std::nullopt);
   try {
-    out.tube_diameter = 2 * free_tube_radius(rc.pressure, rc.youngs_modulus, rc.wall_thickness, r0, stiffening_radius);
+    out.tube_diameter = 2 * free_tube_radius(rc.pressure, rc.youngs_modulus, rc.wall_thickness, r0, stiffening_radius,
+                                             rc.stiffness_index);
   } catch (const NumericalError&) {
     out.tube_diameter = std::numeric_limits<double>::infinity();
   }
@@ -331,7 +332,7 @@ RootDistension distend_root(const SceneConfig& sc, const TriMesh& mesh, VecX& x)
   MechanicalSystem sys(free_mesh, sc.density, sc.thickness);
   add_material_terms(sc, free_mesh, sys);
   sys.add_term(std::make_unique<RootSpringTerm>(g, mesh.start_positions(), rc.youngs_modulus, rc.wall_thickness, r0,
-                                                stiffening_radius));
+                                                stiffening_radius, rc.stiffness_index));
   sys.add_term(std::make_unique<RootPressureTerm>(g, rc.pressure));
   sys.finalize();
   x = flatten(mesh.start_positions());
