@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <random>
@@ -309,6 +310,28 @@ TriMesh root_band(int n = 24) {
   m.boundary.assign(m.num_nodes(), BoundaryType::attached);
   return m;
 }
+
+// The band's nodes moved radially onto a tube of the given radius.
+VecX tube_at(const TriMesh& band, double radius) {
+  VecX x = flatten(band.points) * (radius / 10);
+  for (int i = 0; i < band.num_nodes(); ++i) x[3 * i + 2] = band.points(i, 2);
+  return x;
+}
+
+// At the free tube's radius the root's hoop springs balance its pressure.
+void check_free_tube_balance(const TriMesh& band, const RootGeometry& g, const RootSpringTerm& springs,
+                             const std::function<double(double)>& free_radius) {
+  const VecX v = VecX::Zero(3 * band.num_nodes());
+  for (double mmHg : {40.0, 120.0, 200.0}) {
+    INFO(mmHg << " mmHg");
+    RootPressureTerm pressure(g, mmHg * units::mmHg);
+    const VecX x = tube_at(band, free_radius(mmHg * units::mmHg));
+    VecX f = VecX::Zero(x.size()), fp = VecX::Zero(x.size());
+    springs.add(State{x, v, 1.0, 0}, f, nullptr, nullptr);
+    pressure.add(State{x, v, 1.0, 0}, fp, nullptr, nullptr);
+    CHECK((f + fp).norm() < 1e-9 * fp.norm());
+  }
+}
 }  // namespace
 
 TEST_CASE("root springs and pressure balance at the elastic tube's radius", "[mechanics][root]") {
@@ -361,24 +384,11 @@ TEST_CASE("a stiffening root balances the pressure at the stiffness-index law's 
   CHECK_THROWS_AS(RootSpringTerm(g, m.points, E, t, r0, 0.9 * r0), InputError);
 
   const VecX v = VecX::Zero(3 * m.num_nodes());
-  auto tube_at = [&](double radius) {
-    VecX x = flatten(m.points) * (radius / 10);
-    for (int i = 0; i < m.num_nodes(); ++i) x[3 * i + 2] = m.points(i, 2);
-    return x;
-  };
-  for (double mmHg : {40.0, 120.0, 200.0}) {
-    INFO(mmHg << " mmHg");
-    RootPressureTerm pressure(g, mmHg * units::mmHg);
-    const VecX x = tube_at(free_tube_radius(mmHg * units::mmHg, E, t, r0, rs));
-    VecX f = VecX::Zero(x.size()), fp = VecX::Zero(x.size());
-    springs.add(State{x, v, 1.0, 0}, f, nullptr, nullptr);
-    pressure.add(State{x, v, 1.0, 0}, fp, nullptr, nullptr);
-    CHECK((f + fp).norm() < 1e-9 * fp.norm());
-  }
+  check_free_tube_balance(m, g, springs, [&](double p) { return free_tube_radius(p, E, t, r0, rs); });
   // The hoop force is continuous with its slope at rs: one-sided differences agree.
   auto radial_force = [&](double radius) {
     VecX f = VecX::Zero(3 * m.num_nodes());
-    springs.add(State{tube_at(radius), v, 1.0, 0}, f, nullptr, nullptr);
+    springs.add(State{tube_at(m, radius), v, 1.0, 0}, f, nullptr, nullptr);
     return f[0];
   };
   const double h = 1e-5;
@@ -386,7 +396,7 @@ TEST_CASE("a stiffening root balances the pressure at the stiffness-index law's 
   CHECK((radial_force(rs + 2 * h) - radial_force(rs + h)) / h ==
         Approx((radial_force(rs - h) - radial_force(rs - 2 * h)) / h).epsilon(1e-3));
   // Jacobian against finite differences on the stiff branch (radius 11.5 mm, moved up to 0.3 mm).
-  VecX y = tube_at(11.5);
+  VecX y = tube_at(m, 11.5);
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> jitter(-0.3, 0.3);
   for (int k = 0; k < y.size(); ++k) y[k] += jitter(rng);
@@ -409,28 +419,15 @@ TEST_CASE("a root given its own stiffness index follows ln(P / Ps) = beta (D / D
   CHECK_THROWS_AS(RootSpringTerm(g, m.points, E, t, r0, rs, -1.0), InputError);
 
   const VecX v = VecX::Zero(3 * m.num_nodes());
-  auto tube_at = [&](double radius) {
-    VecX x = flatten(m.points) * (radius / 10);
-    for (int i = 0; i < m.num_nodes(); ++i) x[3 * i + 2] = m.points(i, 2);
-    return x;
-  };
-  for (double mmHg : {40.0, 120.0, 200.0}) {
-    INFO(mmHg << " mmHg");
-    RootPressureTerm pressure(g, mmHg * units::mmHg);
-    const VecX x = tube_at(free_tube_radius(mmHg * units::mmHg, E, t, r0, rs, beta));
-    VecX f = VecX::Zero(x.size()), fp = VecX::Zero(x.size());
-    springs.add(State{x, v, 1.0, 0}, f, nullptr, nullptr);
-    pressure.add(State{x, v, 1.0, 0}, fp, nullptr, nullptr);
-    CHECK((f + fp).norm() < 1e-9 * fp.norm());
-  }
+  check_free_tube_balance(m, g, springs, [&](double p) { return free_tube_radius(p, E, t, r0, rs, beta); });
   // The hoop force stays continuous at rs (its slope jumps unless beta = r0 / (rs - r0)).
   auto radial_force = [&](double radius) {
     VecX f = VecX::Zero(3 * m.num_nodes());
-    springs.add(State{tube_at(radius), v, 1.0, 0}, f, nullptr, nullptr);
+    springs.add(State{tube_at(m, radius), v, 1.0, 0}, f, nullptr, nullptr);
     return f[0];
   };
   CHECK(radial_force(rs + 1e-9) == Approx(radial_force(rs - 1e-9)).epsilon(1e-7));
-  VecX y = tube_at(1.02 * rs);
+  VecX y = tube_at(m, 1.02 * rs);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> jitter(-0.1, 0.1);
   for (int k = 0; k < y.size(); ++k) y[k] += jitter(rng);

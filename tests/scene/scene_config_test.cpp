@@ -76,6 +76,9 @@ TEST_CASE("aortic_root.stiffening_pressure: the preset's 80 mmHg, a value of its
   CHECK_THROWS_WITH(root({{"stiffening_pressure", "never"}}), Catch::Contains("aortic_root.stiffening_pressure"));
   CHECK_THROWS_WITH(root({{"stiffening_pressure", 80}}), Catch::Contains("aortic_root.stiffening_pressure"));
   CHECK(*root({{"stiffness_index", 12.5}}).stiffness_index == 12.5);
+  CHECK_FALSE(root(json::object()).stiffness_index);  // aortic_root.json gives none: continuous
+  CHECK_FALSE(root({{"preset", "aortic_root_taut"}, {"stiffness_index", "continuous"}}).stiffness_index);
+  CHECK(*root({{"preset", "aortic_root_taut"}}).stiffness_index == 20);
   CHECK_THROWS_WITH(root({{"stiffness_index", -3}}), Catch::Contains("aortic_root.stiffness_index"));
   CHECK_THROWS_WITH(root({{"stiffness_index", "stiff"}}), Catch::Contains("aortic_root.stiffness_index"));
 }

@@ -238,9 +238,13 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       ac.stiffening_pressure = a.quantity("stiffening_pressure", Dimension::pressure, *stiffening_default, 1e-9, 1e3);
     }
     a.document("stiffening_pressure", "pressure or \"none\"", "the preset's, else none");
-    if (a.has("stiffness_index") || stiffness_index_default)
+    // "continuous": the linear tube's own index at the stiffening pressure (tension and slope
+    // continuous there), also over a preset that gives one.
+    if (a.has("stiffness_index") && a.raw("stiffness_index") == json("continuous"))
+      a.record("stiffness_index", "continuous");
+    else if (a.has("stiffness_index") || stiffness_index_default)
       ac.stiffness_index = a.number("stiffness_index", stiffness_index_default.value_or(1.0), 1e-3, 1e3);
-    a.document("stiffness_index", "number (β)", "the preset's, else the linear tube's own at the stiffening pressure");
+    a.document("stiffness_index", "number (β) or \"continuous\"", "the preset's, else continuous");
     ac.pressure = sc.pressure ? a.quantity("pressure", Dimension::pressure, sc.pressure->value, 0.0, 1e3)
                               : a.quantity("pressure", Dimension::pressure, std::nullopt, 0.0, 1e3);
     a.document("pressure", "", "the scene's pressure");
