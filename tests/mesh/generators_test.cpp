@@ -4,6 +4,7 @@
 
 #include "valve/analysis/leaflet_metrics.hpp"
 #include "valve/core/error.hpp"
+#include "valve/mechanics/aortic_root.hpp"
 #include "valve/mesh/generators.hpp"
 #include "valve/mesh/quality.hpp"
 #include "valve/mesh/topology.hpp"
@@ -212,4 +213,29 @@ TEST_CASE("aortic valve graft: larger rest shape, sewn in at the root's radius",
   const double pi = 3.14159265358979, depth = 20 * std::pow(std::sin(1.047 / 2), 2) / std::tan(22 * pi / 180);
   CHECK(top == Approx(0.27 * (depth + 5)).epsilon(1e-6));
   CHECK_THROWS_AS([] { AorticValveOptions b; b.width_scale[1] = 0.9; return generate_aortic_valve(b); }(), InputError);
+}
+
+TEST_CASE("the root of a valve with a wider graft is the one its leaflets are sewn into", "[mechanics][root]") {
+  // A graft's rest shape lies on a cylinder width_scale times the root's; the root is where the
+  // leaflets start (radius 10 mm for the 20 mm valve), whatever the graft's width.
+  AorticValveOptions native_options;
+  const RootGeometry native = root_geometry(generate_aortic_valve(native_options), Vec3::Zero(), Vec3::UnitZ());
+  AorticValveOptions graft_options;
+  graft_options.width_scale[0] = 1.27;
+  const TriMesh graft_valve = generate_aortic_valve(graft_options);
+  const RootGeometry graft = root_geometry(graft_valve, Vec3::Zero(), Vec3::UnitZ());
+  CHECK(native.mesh_radius == Approx(10).epsilon(1e-9));
+  CHECK(graft.mesh_radius == Approx(10).epsilon(1e-9));
+  // The wall is shared by attachment length along the root, which the gathered graft does not grow:
+  // its nodes' share is about a third, as a native leaflet's.
+  double graft_share = 0, total = 0;
+  for (size_t k = 0; k < graft.nodes.size(); ++k) {
+    total += graft.wall_area[k];
+    bool on_graft = false;
+    for (int t = 0; t < graft_valve.num_triangles() && !on_graft; ++t)
+      if (graft_valve.leaflet[t] == 0)
+        for (int c = 0; c < 3; ++c) on_graft |= graft_valve.triangles[t][c] == graft.nodes[k];
+    if (on_graft) graft_share += graft.wall_area[k];
+  }
+  CHECK(graft_share / total == Approx(1.0 / 3).margin(0.03));
 }

@@ -52,12 +52,15 @@ RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Ve
   RootGeometry g;
   g.axis_point = axis_point;
   g.axis_direction = axis_direction.normalized();
+  // Where the leaflets are sewn: their start positions (a graft's rest shape lies on a wider
+  // cylinder than the root it is sewn into).
+  const MatX3& sewn = mesh.start_positions();
   std::vector<double> half_length(mesh.num_nodes(), 0.0);
   const Topology topo = build_topology(mesh.triangles, mesh.num_nodes());
   auto attached = [&](int i) { return !mesh.boundary.empty() && mesh.boundary[i] == BoundaryType::attached; };
   for (const auto& e : topo.edges) {
     if (e.tris[1] >= 0 || !attached(e.a) || !attached(e.b)) continue;
-    const double l = (mesh.points.row(e.a) - mesh.points.row(e.b)).norm();
+    const double l = (sewn.row(e.a) - sewn.row(e.b)).norm();
     half_length[e.a] += 0.5 * l;
     half_length[e.b] += 0.5 * l;
   }
@@ -66,7 +69,7 @@ RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Ve
     if (!attached(i)) continue;
     g.nodes.push_back(i);
     total += half_length[i];
-    const Vec3 p = mesh.points.row(i);
+    const Vec3 p = sewn.row(i);
     const double h = (p - g.axis_point).dot(g.axis_direction);
     lo = std::min(lo, h), hi = std::max(hi, h);
     radius += radius_from_axis(g, p);

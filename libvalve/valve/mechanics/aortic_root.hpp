@@ -40,12 +40,13 @@ struct RootGeometry {
   Vec3 axis_direction = Vec3::UnitZ();  // unit
   std::vector<int> nodes;               // attached nodes
   std::vector<double> wall_area;        // A_i, mm²
-  double mesh_radius = 0;               // R, mm: mean radius of the attached nodes at rest
+  double mesh_radius = 0;               // R, mm: mean radius of the attached nodes where sewn
 };
 
 /// Attached nodes (BoundaryType attached) and their share of the root wall: the tube between
 /// the lowest and highest attached node, split in proportion to each node's half-length of
-/// attachment boundary edges. Throws InputError when the mesh has no attached node.
+/// attachment boundary edges, all at the mesh's start positions (where the leaflets are sewn).
+/// Throws InputError when the mesh has no attached node.
 RootGeometry root_geometry(const TriMesh& mesh, const Vec3& axis_point, const Vec3& axis_direction);
 
 /// Radius of a point from the axis.
