@@ -89,7 +89,7 @@ RootSpringTerm::RootSpringTerm(const RootGeometry& g, const MatX3& points, doubl
     if (!(std::isfinite(*rs_) && *rs_ > r0))
       throw InputError("aortic_root: expected a stiffening radius above the unloaded radius " + format_number(r0) +
                        " mm, found " + format_number(*rs_) + " mm");
-    beta_ = stiffness_index.value_or(root_stiffness_index(r0, *rs_));
+    beta_ = root_stiffness_index(r0, *rs_, stiffness_index);
     if (!(std::isfinite(beta_) && beta_ > 0))
       throw InputError("aortic_root.stiffness_index: expected a positive number, found " + format_number(beta_));
   }
@@ -133,7 +133,7 @@ double free_tube_radius(double pressure, double E, double t, double r0, std::opt
   const double c = pressure * r0 / (E * t);
   const double linear = c < 1 ? r0 / (1 - c) : std::numeric_limits<double>::infinity();
   if (stiffening_radius && linear > *stiffening_radius) {
-    const double rs = *stiffening_radius, beta = stiffness_index.value_or(root_stiffness_index(r0, rs));
+    const double rs = *stiffening_radius, beta = root_stiffness_index(r0, rs, stiffness_index);
     const double ps = E * t * (rs - r0) / (r0 * rs);  // the linear tube's pressure at r_s
     return rs * (1 + std::log(pressure / ps) / beta);
   }

@@ -76,9 +76,11 @@ class RootSpringTerm final : public ForceTerm {
   double beta_ = 0;
 };
 
-/// The stiffness index above the stiffening radius r_s that keeps the hoop tension and its
-/// slope continuous there: β = r0 / (r_s − r0) (see above).
-inline double root_stiffness_index(double r0, double stiffening_radius) { return r0 / (stiffening_radius - r0); }
+/// The stiffness index above the stiffening radius r_s: the `given` one, else the one that keeps
+/// the hoop tension and its slope continuous there, β = r0 / (r_s − r0) (see above).
+inline double root_stiffness_index(double r0, double stiffening_radius, std::optional<double> given = std::nullopt) {
+  return given ? *given : r0 / (stiffening_radius - r0);
+}
 
 /// Radius of the free tube (no leaflets) at pressure P (MPa): r0 / (1 − P r0 / (E t)) while
 /// the linear law holds; beyond the stiffening radius r_s (when given), r_s (1 + ln(P / P_s) / β)
