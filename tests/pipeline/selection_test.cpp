@@ -55,12 +55,44 @@ TEST_CASE("select: per group the row meeting every bound with the smallest minim
   two.rows.pop_back();
   CHECK(select_table(sel, two).line.find("; width, height the same for every stiffness") != std::string::npos);
   SelectSpec strict = sel;
-  strict.at_least[0].at_least = 1.2;
+  strict.thresholds[0].bound = 1.2;
   two.rows.push_back({"x0.5", "14", "27", "262", "1.3", "ok"});
   const Selection differ = select_table(strict, two);  // x0.5's 7/13 seals only 1.0 mm now
   CHECK(differ.table.rows[0][2] == "7");
   CHECK(differ.table.rows[1][2] == "14");
   CHECK(differ.line.find("; width, height change with stiffness") != std::string::npos);
+}
+
+TEST_CASE("select: at_most bounds a column from above, alone or beside at_least", "[pipeline]") {
+  // x1's smallest sealing graft (7/13, area 220) is too large under area <= 215; its next
+  // candidates (230: too little seal, 240: no measure, 260) are larger still, so x1 has none.
+  const PipelineSpec both = parse(with_select(R"({"csv": "c.csv", "from": "sizing.csv", "where": {"status": ["ok"]},
+      "group_by": ["stiffness"], "at_least": {"seal_mm": 1}, "at_most": {"area": 221}, "minimize": ["area"]})"));
+  const Selection s = select_table(both.selects[0], sizing);
+  REQUIRE(s.table.rows.size() == 3);
+  CHECK(s.table.rows[0][1] == "true");  // x1: 220 <= 221
+  CHECK(s.table.rows[1][1] == "true");  // x0.5: 221, at the bound, qualifies
+  CHECK(s.line.rfind("c.csv: smallest area with seal_mm >= 1 and area <= 221: ", 0) == 0);
+  SelectSpec tighter = both.selects[0];
+  tighter.thresholds[1].bound = 215;
+  const Selection none = select_table(tighter, sizing);
+  CHECK(none.table.rows[0][1] == "false");
+  CHECK(none.table.rows[1][1] == "false");
+  // at_most alone: the largest seal is not wanted, the smallest area with seal_mm <= 1 is.
+  const PipelineSpec alone = parse(with_select(R"({"csv": "c.csv", "from": "sizing.csv", "where": {"status": ["ok"]},
+      "group_by": [], "at_most": {"seal_mm": 1}, "minimize": ["area"]})"));
+  const Selection a = select_table(alone.selects[0], sizing);
+  REQUIRE(a.table.rows.size() == 1);
+  CHECK(a.table.rows[0] == std::vector<std::string>{"true", "x2", "0", "0", "200", "0.2", "ok"});
+  // Neither bound, or an empty or non-numeric one, is refused with its key.
+  const std::string ok = R"("csv": "c.csv", "from": "sizing.csv", "group_by": [], )";
+  CHECK(message_of(with_select("{" + ok + R"("minimize": ["area"]})")) ==
+        "P.json: select[0].at_least: expected an object of column: number (or at_most), found nothing (one of them is "
+        "required)");
+  CHECK(message_of(with_select("{" + ok + R"("at_most": {}, "minimize": ["area"]})")).find(
+            "select[0].at_most: expected a non-empty object") != std::string::npos);
+  CHECK(message_of(with_select("{" + ok + R"("at_most": {"area": true}, "minimize": ["area"]})")) ==
+        "P.json: select[0].at_most.area: expected a finite number, found boolean true");
 }
 
 TEST_CASE("select: ties keep the earlier row, later minimize columns break them, no groups gives one row", "[pipeline]") {

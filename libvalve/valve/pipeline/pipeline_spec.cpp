@@ -603,7 +603,7 @@ SelectSpec parse_select(const ojson& a, size_t i, const KnownTables& tables, con
   SelectSpec sel;
   sel.key = "select[" + std::to_string(i) + "]";
   if (!a.is_object()) fail(file, sel.key, "an object with csv, from, group_by, at_least and minimize", describe(a));
-  check_keys(a, {"csv", "from", "where", "group_by", "at_least", "minimize", "agree_on"}, file, sel.key);
+  check_keys(a, {"csv", "from", "where", "group_by", "at_least", "at_most", "minimize", "agree_on"}, file, sel.key);
   sel.csv = inside_path(a, "csv", file, sel.key);
   if (sel.csv.size() < 5 || sel.csv.substr(sel.csv.size() - 4) != ".csv")
     fail(file, sel.key + ".csv", "a file name ending in .csv (the line goes beside it as .txt)", "\"" + sel.csv + "\"");
@@ -618,16 +618,21 @@ SelectSpec parse_select(const ojson& a, size_t i, const KnownTables& tables, con
   const ColumnCheck check_column = column_check(columns, sel.from, file);
   sel.where = parse_where(a, sel.key, check_column, file);
   sel.group_by = distinct_columns(a, "group_by", /*allow_empty=*/true, sel.key, check_column, file);
-  const std::string tkey = sel.key + ".at_least";
-  if (!a.contains("at_least")) fail(file, tkey, "an object of column: number", "nothing (the key is required)");
-  const ojson& bounds = a["at_least"];
-  if (!bounds.is_object() || bounds.empty()) fail(file, tkey, "a non-empty object of column: number", describe(bounds));
-  for (auto it = bounds.begin(); it != bounds.end(); ++it) {
-    const std::string key = tkey + "." + it.key();
-    check_column(it.key(), key);
-    if (!it.value().is_number() || !std::isfinite(it.value().get<double>()))
-      fail(file, key, "a finite number", describe(it.value()));
-    sel.at_least.push_back({it.key(), it.value().get<double>()});
+  if (!a.contains("at_least") && !a.contains("at_most"))
+    fail(file, sel.key + ".at_least", "an object of column: number (or at_most)", "nothing (one of them is required)");
+  for (const bool at_most : {false, true}) {
+    const std::string name = at_most ? "at_most" : "at_least";
+    if (!a.contains(name)) continue;
+    const std::string tkey = sel.key + "." + name;
+    const ojson& bounds = a[name];
+    if (!bounds.is_object() || bounds.empty()) fail(file, tkey, "a non-empty object of column: number", describe(bounds));
+    for (auto it = bounds.begin(); it != bounds.end(); ++it) {
+      const std::string key = tkey + "." + it.key();
+      check_column(it.key(), key);
+      if (!it.value().is_number() || !std::isfinite(it.value().get<double>()))
+        fail(file, key, "a finite number", describe(it.value()));
+      sel.thresholds.push_back({it.key(), it.value().get<double>(), at_most});
+    }
   }
   sel.minimize = distinct_columns(a, "minimize", /*allow_empty=*/false, sel.key, check_column, file);
   if (a.contains("agree_on"))

@@ -63,7 +63,8 @@
 //      "from": "graft_sizing.csv",       // aggregates); unique csv; from: a gather or aggregate csv
 //      "where": {"status": ["ok"]},      // optional, as in an aggregate
 //      "group_by": ["stiffness"],        // required, may be []
-//      "at_least": {"native_min_height_mm": 1},   // required, non-empty: column: number
+//      "at_least": {"native_min_height_mm": 1},   // column: number; at_least, at_most or
+//      "at_most": {"orifice_area_mm2": 0.05},      // both, together non-empty
 //      "minimize": ["graft_rest_area_mm2"],       // required, non-empty list of columns
 //      "agree_on": ["width_pct", "height_pct"]}   // optional: compared across the groups
 //   ],
@@ -100,7 +101,8 @@
 // columns of the earlier aggregate), and the output column names must be distinct.
 //
 // Selections: each select entry reads its "from" table, keeps the rows that pass "where"
-// and whose "at_least" cells are all numbers at or above their bounds, and in each group
+// whose "at_least" cells are all numbers at or above their bounds and whose "at_most" cells
+// are all numbers at or below theirs, and in each group
 // (one per distinct group_by combination among all rows that pass "where", in order of
 // first appearance) picks the row with the smallest "minimize" cells (numbers compared in
 // list order; a row with a non-numeric one is not a candidate; ties go to the earlier row).
@@ -227,10 +229,12 @@ struct AggregateSpec {
   std::string key;                       ///< "aggregate[i]"
 };
 
-/// A "select" threshold: keep rows whose cell in `column` is a number >= `at_least`.
+/// A "select" threshold: keep rows whose cell in `column` is a number >= `bound` (or <= `bound`
+/// when `at_most`).
 struct SelectThreshold {
   std::string column;
-  double at_least = 0;
+  double bound = 0;
+  bool at_most = false;
 };
 
 struct SelectSpec {
@@ -238,7 +242,7 @@ struct SelectSpec {
   std::string from;                       ///< a gather or an aggregate CSV
   std::vector<AggregateFilter> where;
   std::vector<std::string> group_by;      ///< may be empty: one choice for the whole table
-  std::vector<SelectThreshold> at_least;  ///< non-empty
+  std::vector<SelectThreshold> thresholds;  ///< the at_least bounds, then the at_most ones; non-empty
   std::vector<std::string> minimize;      ///< non-empty; compared in order, ties by table order
   std::vector<std::string> agree_on;      ///< columns the line compares across groups
   std::vector<std::string> header;        ///< group_by, "found", then the other columns of from

@@ -28,8 +28,8 @@ Selection select_table(const SelectSpec& select, const CsvTable& from) {
   std::vector<size_t> order, agree;
   for (const auto& c : select.minimize) order.push_back(index(c));
   for (const auto& c : select.agree_on) agree.push_back(index(c));
-  std::vector<std::pair<size_t, double>> bounds;
-  for (const auto& t : select.at_least) bounds.emplace_back(index(t.column), t.at_least);
+  std::vector<size_t> bounded;
+  for (const auto& t : select.thresholds) bounded.push_back(index(t.column));
 
   // Per group (in order of first appearance among the rows that pass "where"): the best row
   // so far and its minimized values.
@@ -47,10 +47,12 @@ Selection select_table(const SelectSpec& select, const CsvTable& from) {
     const auto [it, added] = group_of.emplace(key, groups.size());
     if (added) groups.push_back({key, nullptr, {}});
     Choice& g = groups[it->second];
-    const bool meets = std::all_of(bounds.begin(), bounds.end(), [&](const auto& b) {
-      const auto x = numeric_cell(table_cell(row, b.first));
-      return x && *x >= b.second;
-    });
+    bool meets = true;
+    for (size_t k = 0; k < bounded.size() && meets; ++k) {
+      const SelectThreshold& t = select.thresholds[k];
+      const auto x = numeric_cell(table_cell(row, bounded[k]));
+      meets = x && (t.at_most ? *x <= t.bound : *x >= t.bound);
+    }
     if (!meets) continue;
     std::vector<double> rank;
     for (size_t c : order) {
@@ -97,7 +99,7 @@ Selection select_table(const SelectSpec& select, const CsvTable& from) {
     choices.push_back(choice);
   }
   std::vector<std::string> rule;
-  for (const auto& b : select.at_least) rule.push_back(b.column + " >= " + format_number(b.at_least));
+  for (const auto& t : select.thresholds) rule.push_back(t.column + (t.at_most ? " <= " : " >= ") + format_number(t.bound));
   out.line = select.csv + ": smallest " + join_words(select.minimize, ", then ") + " with " + join_words(rule, " and ") +
              ": " + join_words(choices, "; ");
   if (!select.agree_on.empty() && groups.size() > 1) {
