@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Checks that the normal aortic valve's recorded choices (configs/aortic_valve_normal.json)
 are what the tools use: valve-generate's default fiber angle (from its summary), the closure
-scene's bending modulus and root preset, and that preset's modulus and stiffening pressure.
+scene's bending modulus and root preset, and that preset's modulus, stiffening pressure and
+stiffness index.
 
 usage: normal_valve_config_check.py REPO VALVE_GENERATE WORK_DIR
 """
@@ -28,6 +29,8 @@ def main():
          root.get("youngs_modulus", preset.get("youngs_modulus"))),
         ("root_stiffening_pressure", record["root_stiffening_pressure"], "the root's stiffening_pressure",
          root.get("stiffening_pressure", preset.get("stiffening_pressure"))),
+        ("root_stiffness_index", record["root_stiffness_index"], "the root's stiffness_index",
+         root.get("stiffness_index", preset.get("stiffness_index", "continuous"))),
     ]
     bad = [f"configs/aortic_valve_normal.json: {key}: expected {used} ({where}), found {recorded}"
            for key, recorded, where, used in pairs if recorded != used]
