@@ -1,6 +1,7 @@
 #pragma once
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCore>
+#include <algorithm>
 #include <vector>
 
 namespace valve {
@@ -38,10 +39,13 @@ class NodeBlockAmdOrdering {
       if (seen[node] != node) seen[node] = node, inner.push_back(static_cast<StorageIndex>(node));
       outer[node + 1] = static_cast<StorageIndex>(inner.size());
     }
-    std::vector<double> values(inner.size(), 1.0);
-    Eigen::Map<const Eigen::SparseMatrix<double, Eigen::ColMajor, StorageIndex>> graph_view(
-        nodes, nodes, static_cast<Eigen::Index>(inner.size()), outer.data(), inner.data(), values.data());
-    Eigen::SparseMatrix<double, Eigen::ColMajor, StorageIndex> graph = graph_view;  // AMD overwrites it
+    // Each column keeps its nodes in the order found: AMD does not need them sorted, so they go
+    // into the matrix's arrays as they are (assigning from a Map would demand sorted columns).
+    Eigen::SparseMatrix<double, Eigen::ColMajor, StorageIndex> graph(nodes, nodes);  // AMD overwrites it
+    graph.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+    std::copy(outer.begin(), outer.end(), graph.outerIndexPtr());
+    std::copy(inner.begin(), inner.end(), graph.innerIndexPtr());
+    std::fill_n(graph.valuePtr(), inner.size(), 1.0);
     PermutationType node_perm;
     Eigen::internal::minimum_degree_ordering(graph, node_perm);
     perm.resize(n);
