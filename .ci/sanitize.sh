@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Builds libvalve's unit tests with AddressSanitizer and UndefinedBehaviorSanitizer in
-# build-asan/ (-O1, so the tests run in seconds) and runs them; any sanitizer report fails.
+# Builds libvalve's unit tests and the pipeline's with AddressSanitizer and
+# UndefinedBehaviorSanitizer in build-asan/ (-O1, so the tests run in seconds) and runs them;
+# any sanitizer report or failed assertion fails.
 # With --stages it also builds every stage and runs the stage.* tests (a build of everything,
 # about twice the unit tests' build, then about 90 s of tests).
 set -euo pipefail
@@ -21,6 +22,7 @@ if [ "${1:-}" = "--stages" ]; then
   # module it unloads at exit (LeakSanitizer cannot name it): memory errors only there.
   ASAN_OPTIONS=detect_leaks=0:halt_on_error=1 ctest -j2 --output-on-failure -R "^stage\.render\." --timeout 900
 else
-  cmake --build build-asan -j"$(nproc)" --target valve_unit_tests
+  cmake --build build-asan -j"$(nproc)" --target valve_unit_tests valve_pipeline_tests
   ./build-asan/tests/valve_unit_tests
+  ./build-asan/tests/pipeline/valve_pipeline_tests
 fi
