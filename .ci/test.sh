@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs the whole test suite (unit, stage and pipeline tests), then the unit
-# tests under the address and undefined-behaviour sanitizers (.ci/sanitize.sh).
+# and pipeline tests under the address and undefined-behaviour sanitizers (.ci/sanitize.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash .ci/setup.sh
@@ -8,7 +8,7 @@ cd build
 # Two test processes share two cores: keep BLAS single-threaded so they do not oversubscribe.
 export OPENBLAS_NUM_THREADS=1
 ctest -j2 --output-on-failure --timeout 900
-# libvalve's unit tests again under AddressSanitizer and UndefinedBehaviorSanitizer: a second
+# libvalve's unit and pipeline tests again under AddressSanitizer and UndefinedBehaviorSanitizer: a second
 # build of libvalve (about 7 minutes on 2 cores), run when the set-up, build and suite above
 # left it room in CI's 30 minutes ($SECONDS counts from this script's start).
 cd ..
