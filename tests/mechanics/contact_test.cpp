@@ -318,6 +318,13 @@ VecX tube_at(const TriMesh& band, double radius) {
   return x;
 }
 
+// The hoop springs' radial force on the band's first node with every node on a tube of that radius.
+double hoop_force(const TriMesh& band, const RootSpringTerm& springs, double radius) {
+  VecX f = VecX::Zero(3 * band.num_nodes());
+  springs.add(State{tube_at(band, radius), VecX::Zero(3 * band.num_nodes()), 1.0, 0}, f, nullptr, nullptr);
+  return f[0];
+}
+
 // At the free tube's radius the root's hoop springs balance its pressure.
 void check_free_tube_balance(const TriMesh& band, const RootGeometry& g, const RootSpringTerm& springs,
                              const std::function<double(double)>& free_radius) {
@@ -386,11 +393,7 @@ TEST_CASE("a stiffening root balances the pressure at the stiffness-index law's 
   const VecX v = VecX::Zero(3 * m.num_nodes());
   check_free_tube_balance(m, g, springs, [&](double p) { return free_tube_radius(p, E, t, r0, rs); });
   // The hoop force is continuous with its slope at rs: one-sided differences agree.
-  auto radial_force = [&](double radius) {
-    VecX f = VecX::Zero(3 * m.num_nodes());
-    springs.add(State{tube_at(m, radius), v, 1.0, 0}, f, nullptr, nullptr);
-    return f[0];
-  };
+  auto radial_force = [&](double radius) { return hoop_force(m, springs, radius); };
   const double h = 1e-5;
   CHECK(0.5 * (radial_force(rs + h) + radial_force(rs - h)) == Approx(radial_force(rs)).epsilon(1e-9));
   CHECK((radial_force(rs + 2 * h) - radial_force(rs + h)) / h ==
@@ -421,11 +424,7 @@ TEST_CASE("a root given its own stiffness index follows ln(P / Ps) = beta (D / D
   const VecX v = VecX::Zero(3 * m.num_nodes());
   check_free_tube_balance(m, g, springs, [&](double p) { return free_tube_radius(p, E, t, r0, rs, beta); });
   // The hoop force stays continuous at rs (its slope jumps unless beta = r0 / (rs - r0)).
-  auto radial_force = [&](double radius) {
-    VecX f = VecX::Zero(3 * m.num_nodes());
-    springs.add(State{tube_at(m, radius), v, 1.0, 0}, f, nullptr, nullptr);
-    return f[0];
-  };
+  auto radial_force = [&](double radius) { return hoop_force(m, springs, radius); };
   CHECK(radial_force(rs + 1e-9) == Approx(radial_force(rs - 1e-9)).epsilon(1e-7));
   VecX y = tube_at(m, 1.02 * rs);
   std::mt19937 rng(11);
