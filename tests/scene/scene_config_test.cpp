@@ -98,3 +98,14 @@ TEST_CASE("solver.quasistatic.approach: newton by default, dynamic with its sett
   CHECK_THROWS_WITH(approach({{"approach_settle_tolerance", "0 mm"}}),
                     Catch::Contains("solver.quasistatic.approach_settle_tolerance"));
 }
+
+TEST_CASE("solver.quasistatic.forcing: adaptive by default, fixed on request, anything else refused", "[scene][config]") {
+  auto forcing = [](const json& block) {
+    const json j = {{"mesh", "m.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
+                    {"pressure", {{"value", "80 mmHg"}}}, {"solver", {{"type", "quasistatic"}, {"quasistatic", block}}}};
+    return parse_scene(j, "s.json", ".").quasistatic.forcing;
+  };
+  CHECK(forcing(json::object()) == NewtonForcing::adaptive);
+  CHECK(forcing({{"forcing", "fixed"}}) == NewtonForcing::fixed);
+  CHECK_THROWS_WITH(forcing({{"forcing", "exact"}}), Catch::Contains("solver.quasistatic.forcing"));
+}

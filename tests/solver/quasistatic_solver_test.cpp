@@ -30,3 +30,30 @@ TEST_CASE("exact Hessians come back at the largest proximal step after failing t
   schedule.failed_at(kMaxProximalStep);
   CHECK(schedule.exact_at(kMaxProximalStep));
 }
+
+TEST_CASE("the adaptive forcing term: loose far from equilibrium, tightening with the residual's fall", "[solver][quasistatic]") {
+  ForcingTerm forcing(1e-10, 1e-12);
+  CHECK(forcing.next(1.0) == Approx(0.01));  // the first direction of an increment: the ceiling
+  CHECK(forcing.next(0.1) == Approx(9e-3));   // r falls tenfold: 0.9 · 0.1²
+  CHECK(forcing.next(1e-3) == Approx(9e-5));  // a hundredfold: 0.9 · 1e-4
+}
+
+TEST_CASE("the adaptive forcing term solves no tighter than the residual target needs", "[solver][quasistatic]") {
+  ForcingTerm forcing(1e-10, 1e-6);
+  forcing.next(0.1);
+  // 0.9 · 0.01² = 9e-5, but 0.5 τ / r = 0.5 · 1e-6 / 1e-3 = 5e-4 is enough for the target.
+  CHECK(forcing.next(1e-3) == Approx(5e-4));
+  // At r = 2e-6: 0.5 τ / r = 0.25, held at the ceiling.
+  CHECK(forcing.next(2e-6) == Approx(0.01));
+}
+
+TEST_CASE("the adaptive forcing term stays within its ceiling and its floor", "[solver][quasistatic]") {
+  ForcingTerm forcing(1e-3, 1e-12);
+  CHECK(forcing.next(1.0) == Approx(0.01));
+  // A residual that rises keeps the ceiling.
+  CHECK(forcing.next(2.0) == Approx(0.01));
+  // r halves: 0.9 · 0.25 = 0.225, capped at 0.01.
+  CHECK(forcing.next(1.0) == Approx(0.01));
+  // r falls 1e4-fold: 0.9e-8, raised to the floor 1e-3.
+  CHECK(forcing.next(1e-4) == Approx(1e-3));
+}

@@ -84,6 +84,10 @@ void parse_quasistatic(JsonReader& r, QuasistaticOptions& o, QuasistaticApproach
   o.max_wall_seconds = r.number("max_wall_seconds", o.max_wall_seconds, 0.001, 1e7);
   o.linear_solver = parse_linear_solver(r.choice("linear_solver", linear_solver_names(), std::string("auto")));
   o.iterative_tolerance = r.number("iterative_tolerance", o.iterative_tolerance, 1e-16, 1e-1);
+  o.forcing = r.choice("forcing", {"adaptive", "fixed"},
+                       std::string(o.forcing == NewtonForcing::fixed ? "fixed" : "adaptive")) == "fixed"
+                  ? NewtonForcing::fixed
+                  : NewtonForcing::adaptive;
 }
 
 }  // namespace

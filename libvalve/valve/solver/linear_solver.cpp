@@ -147,6 +147,7 @@ class IterativeSolver final : public LinearSolver {
   }
   bool needs_symmetric() const override { return symmetric_; }
   std::string name() const override { return name_; }
+  void set_tolerance(double tol) override { it_.setTolerance(tol); }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
     it_.compute(A);
@@ -194,6 +195,7 @@ class SymmetricPartBiCGStab final : public LinearSolver {
   }
   bool needs_symmetric() const override { return false; }
   std::string name() const override { return "ldlt_bicgstab"; }
+  void set_tolerance(double tol) override { it_.setTolerance(tol); }
   bool factorize(const SparseMatrix& A) override {
     const auto t0 = std::chrono::steady_clock::now();
     pattern_.factorize(ldlt_, symmetric_nonzeros_.of(symmetric_.of(A)));

@@ -64,6 +64,8 @@ class LinearSolver {
   virtual bool factorize(const SparseMatrix& A) = 0;
   /// Solves A x = b with the last factorized A; false on failure.
   virtual bool solve(const VecX& b, VecX& x) = 0;
+  /// The iterative solvers' relative residual for the next solves; direct solvers ignore it.
+  virtual void set_tolerance(double) {}
   const LinearSolverStats& stats() const { return stats_; }
   virtual std::string name() const = 0;
 

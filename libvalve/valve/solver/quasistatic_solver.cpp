@@ -61,6 +61,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
     // first increment is not held to a tighter absolute tolerance); with none (annulus motion
     // alone), to the increment's first residual.
     double reference = free_norm(sys.external_force(State{x, v, load_target, 0.0}), cons);
+    ForcingTerm forcing(opt.iterative_tolerance, opt.relative_residual_tolerance);
     for (int it = 0; it < opt.max_iterations; ++it) {
       if (wall() > opt.max_wall_seconds) return false;
       const State s{x, v, load, 0.0};
@@ -72,6 +73,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       if (!(reference > 0)) reference = std::max(r, 1e-300);
       sum.relative_residual = r / reference;
       if (sum.relative_residual <= opt.relative_residual_tolerance) return true;
+      if (opt.forcing == NewtonForcing::adaptive) solver->set_tolerance(forcing.next(sum.relative_residual));
       fe = sys.external_force(s);  // frozen for this iteration (the follower pressure)
       double pi0 = 0;
       if (!sys.internal_energy(s, pi0) || !std::isfinite(pi0)) return false;
