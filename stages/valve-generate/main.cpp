@@ -9,9 +9,10 @@
 // KIND: square_patch | clamped_disk (a flat disk of --diameter, rim fixed: pressure tests and
 // the CalculiX cross-check) | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
 // [--gamma DEG] [--commissure-height MM] [--graft-leaflet K --graft-width-pct W
-// --graft-height-pct H], fibers at 25 deg to the free edge rising toward each leaflet's
-// midline by default (-25; a positive angle descends toward it; the normal valve's choices:
-// configs/aortic_valve_normal.json). --count K writes K meshes with
+// --graft-height-pct H [--graft-commissure-gap MM]], fibers at 25 deg to the free edge rising
+// toward each leaflet's midline by default (-25; a positive angle descends toward it; the normal valve's choices:
+// configs/aortic_valve_normal.json). A graft is sewn in --graft-commissure-gap (default 0.3 mm)
+// along the root wall from its neighbours' commissures. --count K writes K meshes with
 // seeds S, S+1, ..., named NAME_<seed>.vtp.
 #include <cstdio>
 #include <filesystem>
@@ -32,7 +33,7 @@ int main(int argc, char** argv) {
   return run_stage("valve-generate", kStageUsage, [&] {
     CommandLine cl(argc, argv,
                    {"out", "triangles", "seed", "count", "fiber-angle", "side", "diameter", "circumference", "name", "jitter",
-                    "relax-iterations", "gamma", "commissure-height", "graft-leaflet", "graft-width-pct", "graft-height-pct", "mesh-copies"},
+                    "relax-iterations", "gamma", "commissure-height", "graft-leaflet", "graft-width-pct", "graft-height-pct", "graft-commissure-gap", "mesh-copies"},
                    {"quiet"});
     const std::vector<std::string> mesh_copies = parse_mesh_copies(cl.get("mesh-copies"));
     if (cl.positional().size() != 1)
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
       r.commissure_height = number_flag(cl, "commissure-height", 5.0, 1e-6, 1e6);
       r.graft_leaflet = static_cast<int>(whole_number_flag(cl, "graft-leaflet", 0, 0, 2));
       r.graft_width_pct = number_flag(cl, "graft-width-pct", 0, 0, 99), r.graft_height_pct = number_flag(cl, "graft-height-pct", 0, -49, 99);
+      r.graft_commissure_gap = number_flag(cl, "graft-commissure-gap", r.graft_commissure_gap, 0, 5);
     }
     // Each leaflet is one diameter wide at the cylinder (seed 3.2.2.1): a single one needs
     // that much of the circumference.

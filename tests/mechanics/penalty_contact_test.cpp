@@ -246,6 +246,30 @@ TEST_CASE("barrier contact: a pair within the reach where the solve starts is ex
   CHECK(forces(far_start, start).norm() > 0);
 }
 
+TEST_CASE("barrier contact: two leaflets close at rest but apart where the mesh starts push back", "[mechanics][penalty_contact]") {
+  // A graft's rest shape is its own cut shape, placed beside the others: the rest distance
+  // between two leaflets means nothing, the start distance does. Within one leaflet the rest
+  // shape still decides (neighbours at a sharp bend).
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.separation = 0.25;
+  const VecX near = flatten(two_sheets(0.1).points);
+  TriMesh apart_at_start = two_sheets(0.1);
+  apart_at_start.initial = two_sheets(1.0).points;
+  PenaltyContactTerm two_leaflets(apart_at_start, opt, std::vector<char>(18, 0));
+  two_leaflets.update_couplings(near);
+  CHECK(forces(two_leaflets, near).norm() > 0);
+  TriMesh one_leaflet = apart_at_start;
+  one_leaflet.leaflet = {0, 0};
+  PenaltyContactTerm within(one_leaflet, opt, std::vector<char>(18, 0));
+  within.update_couplings(near);
+  CHECK(forces(within, near).norm() == 0);
+  // Without start positions the rest shape is the start: two leaflets close at rest are left out.
+  PenaltyContactTerm rest_only(two_sheets(0.1), opt, std::vector<char>(18, 0));
+  rest_only.update_couplings(near);
+  CHECK(forces(rest_only, near).norm() == 0);
+}
+
 TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-difference one on every closest feature", "[mechanics][penalty_contact][fd]") {
   PenaltyContactOptions opt;
   opt.potential = ContactPotential::barrier;

@@ -64,6 +64,22 @@ TEST_CASE("analytic mesh: a graft scales one aortic leaflet, seeds vary the mesh
     return hi - lo;
   };
   CHECK(height(1) > 1.2 * height(0));
+  // The gap between the graft's sides and its neighbours' commissures reaches the generator.
+  CHECK(p["graft_commissure_gap_mm"] == 0.3);
+  auto widest_start_angle = [](const TriMesh& m, int leaflet) {
+    double widest = 0;
+    for (int t = 0; t < m.num_triangles(); ++t)
+      if (m.leaflet[t] == leaflet)
+        for (int k = 0; k < 3; ++k) {
+          const Vec3 p = m.initial.row(m.triangles[t][k]);
+          // Leaflet 1 is centred on 120°: angles from its midline.
+          widest = std::max(widest, std::abs(std::remainder(std::atan2(p.y(), p.x()) - 2.0943951023931953, 6.283185307179586)));
+        }
+    return widest;
+  };
+  r.graft_commissure_gap = 0.5;
+  CHECK(analytic_mesh_parameters(r)["graft_commissure_gap_mm"] == 0.5);
+  CHECK(widest_start_angle(generate_analytic_mesh(r, 1), 1) == Approx(1.047 - 0.5 / 10).epsilon(1e-9));
 
   r.kind = "square_patch";
   CHECK_FALSE(r.has_leaflets());

@@ -215,6 +215,38 @@ TEST_CASE("aortic valve graft: larger rest shape, sewn in at the root's radius",
   CHECK_THROWS_AS([] { AorticValveOptions b; b.width_scale[1] = 0.9; return generate_aortic_valve(b); }(), InputError);
 }
 
+TEST_CASE("a graft starts a gap along the wall from its neighbours' commissures, sharing no node", "[mesh][seed]") {
+  for (const auto& [width_scale, height_scale] : {std::pair{1.07, 1.0}, std::pair{1.07, 1.13}, std::pair{1.0, 1.13}}) {
+    AorticValveOptions o;
+    o.width_scale[0] = width_scale;
+    o.height_scale[0] = height_scale;
+    const TriMesh m = generate_aortic_valve(o);
+    INFO("width scale " << width_scale << ", height scale " << height_scale);
+    std::vector<char> on_graft(m.num_nodes(), 0), on_native(m.num_nodes(), 0);
+    for (int t = 0; t < m.num_triangles(); ++t)
+      for (int c = 0; c < 3; ++c) (m.leaflet[t] == 0 ? on_graft : on_native)[m.triangles[t][c]] = 1;
+    double closest = 1e9, widest_angle = 0;
+    int shared = 0;
+    for (int i = 0; i < m.num_nodes(); ++i) {
+      shared += on_graft[i] && on_native[i];
+      if (!on_graft[i]) continue;
+      widest_angle = std::max(widest_angle, std::abs(std::atan2(m.initial(i, 1), m.initial(i, 0))));
+      for (int j = 0; j < m.num_nodes(); ++j)
+        if (on_native[j]) closest = std::min(closest, (m.initial.row(i) - m.initial.row(j)).norm());
+    }
+    // The graft (leaflet 0, centred on angle 0) spans ±(60° less 0.3 mm of the 10 mm root) where
+    // it starts; its nearest native node is at least the chord of 0.3 mm away.
+    CHECK(shared == 0);
+    const double gap_angle = 0.3 / 10;
+    CHECK(widest_angle == Approx(1.047 - gap_angle).epsilon(1e-9));
+    CHECK(closest >= 2 * 10 * std::sin(gap_angle / 2) - 1e-9);
+    CHECK(closest < 1.0);  // still beside them: within a mesh edge (about 0.8 mm)
+  }
+  AorticValveOptions bad;
+  bad.graft_commissure_gap = -0.1;
+  CHECK_THROWS_AS(generate_aortic_valve(bad), InputError);
+}
+
 TEST_CASE("the root of a valve with a wider graft is the one its leaflets are sewn into", "[mechanics][root]") {
   // A graft's rest shape lies on a cylinder width_scale times the root's; the root is where the
   // leaflets start (radius 10 mm for the 20 mm valve), whatever the graft's width.

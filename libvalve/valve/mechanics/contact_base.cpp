@@ -33,12 +33,23 @@ ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool be
     sum += (mesh.points.row(e.a) - mesh.points.row(e.b)).norm();
   }
   mean_edge_ = topo.edges.empty() ? 0.0 : sum / topo.edges.size();
-  exclude_close_at(flatten(mesh.points));
+  const bool has_start = mesh.initial.rows() == n;
+  exclude_close_at(flatten(mesh.points), has_start);
+  if (has_start) exclude_close_at(flatten(mesh.initial));
 }
 
-void ContactTopology::exclude_close_at(const VecX& x) {
+bool ContactTopology::same_leaflet(int node, int triangle) const { return on_leaflet(node, leaflet_[triangle]); }
+
+bool ContactTopology::same_leaflet_edges(int a, int b, int c, int d) const {
+  for (int l : node_leaflets_[a])
+    if (on_leaflet(b, l) && on_leaflet(c, l) && on_leaflet(d, l)) return true;
+  return false;
+}
+
+void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only) {
   if (!incidence_only()) return;
   for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash)) {
+    if (within_leaflets_only && !same_leaflet(i, t)) continue;
     const Tri& tri = triangles_[t];
     const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
     const Vec3 w = closest_point_weights(p, a, b, c);
@@ -51,6 +62,7 @@ void ContactTopology::exclude_close_at(const VecX& x) {
   for (const auto& [e1, e2] : edge_box_pairs(x, edges_, all, rest_reach_)) {
     const auto [a, b] = edges_[e1];
     const auto [c, d] = edges_[e2];
+    if (within_leaflets_only && !same_leaflet_edges(a, b, c, d)) continue;
     const auto [s1, s2] = closest_segment_parameters(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
     const Vec3 gap = node3(x, a) + s1 * (node3(x, b) - node3(x, a)) - node3(x, c) - s2 * (node3(x, d) - node3(x, c));
     if (gap.norm() > rest_reach_) continue;

@@ -7,8 +7,10 @@
 // A node never touches a triangle that shares a vertex with the node's 1-ring: at a sharp
 // bend such triangles lie within any contact distance without touching. With a rest reach
 // (the barrier), only incident primitives (a node and its own triangles, edges sharing a
-// node) and pairs within that reach in the mesh's rest shape (neighbours at a sharp bend,
-// leaflets joined along a commissure) are excluded: the other neighbours then push back when
+// node) and pairs within that reach in the mesh's rest shape (neighbours at a sharp bend) or
+// where it starts (leaflets meeting along a commissure) are excluded; pairs of two leaflets
+// by the start shape only, where the mesh gives one: a graft's rest shape is its own cut
+// shape, placed apart from the others. The other neighbours push back when
 // a fold brings them together, so a sheet cannot fold through itself. Pairs on the same
 // leaflet are self-contact, pairs on different leaflets contact between leaflets; a node
 // on two leaflets (commissure corner) counts as between leaflets.
@@ -50,9 +52,9 @@ class ContactTopology {
   ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach = -1);
 
   /// With a rest reach: also exclude the pairs within it at positions x (where a solve starts,
-  /// e.g. after the aortic root's distension has sewn two leaflets' attachments onto the same
-  /// stretch of wall). No-op under the 1-ring rule.
-  void exclude_close_at(const VecX& x);
+  /// e.g. after the aortic root's distension has brought two leaflets' attachments within
+  /// it), or with `within_leaflets_only` only those of one leaflet. No-op under the 1-ring rule.
+  void exclude_close_at(const VecX& x, bool within_leaflets_only = false);
 
   /// True when node `node` must not interact with triangle `triangle`.
   bool excluded(int node, int triangle) const;
@@ -75,6 +77,8 @@ class ContactTopology {
  private:
   bool incidence_only() const { return rest_reach_ >= 0; }
   bool in_ring(int node, int other) const;
+  bool same_leaflet(int node, int triangle) const;
+  bool same_leaflet_edges(int a, int b, int c, int d) const;
   bool leaflet_rule_excludes(int node, int leaflet) const;
 
   bool close_at_rest(int node, int triangle) const;

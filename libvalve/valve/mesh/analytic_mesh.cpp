@@ -33,6 +33,7 @@ TriMesh generate_analytic_mesh(const AnalyticMeshRequest& r, std::uint64_t seed)
     o.commissure_height = r.commissure_height;
     o.width_scale[r.graft_leaflet] = 1 + r.graft_width_pct / 100;
     o.height_scale[r.graft_leaflet] = 1 + r.graft_height_pct / 100;
+    o.graft_commissure_gap = r.graft_commissure_gap;
     return generate_aortic_valve(with_fibers_and_mesh(o, r, mesh));
   }
   LeafletOptions o;
@@ -47,7 +48,8 @@ nlohmann::json analytic_mesh_parameters(const AnalyticMeshRequest& r) {
   if (r.kind == "clamped_disk") return {{"diameter_mm", r.diameter}};
   if (r.kind == "aortic_valve")
     return {{"diameter_mm", r.diameter}, {"gamma_deg", r.gamma_deg}, {"commissure_height_mm", r.commissure_height},
-            {"graft_leaflet", r.graft_leaflet}, {"graft_width_pct", r.graft_width_pct}, {"graft_height_pct", r.graft_height_pct}};
+            {"graft_leaflet", r.graft_leaflet}, {"graft_width_pct", r.graft_width_pct}, {"graft_height_pct", r.graft_height_pct},
+            {"graft_commissure_gap_mm", r.graft_commissure_gap}};
   return {{"diameter_mm", r.diameter},
           {"circumference_mm", r.kind == "aortic_leaflet" ? r.circumference : 3 * r.diameter}};
 }

@@ -24,6 +24,7 @@ struct AnalyticMeshRequest {
   double gamma_deg = 22, commissure_height = 5;  ///< aortic_valve
   int graft_leaflet = 0;  ///< aortic_valve: the leaflet scaled by the graft percentages
   double graft_width_pct = 0, graft_height_pct = 0;  ///< added to 100 % of its width and height
+  double graft_commissure_gap = AorticValveOptions{}.graft_commissure_gap;  ///< mm, see AorticValveOptions
 
   /// A valve of three leaflets (three_leaflet_valve or aortic_valve).
   bool is_valve() const { return kind == "three_leaflet_valve" || kind == "aortic_valve"; }

@@ -209,6 +209,10 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
       !(opt.commissure_height > 0))
     throw InputError("aortic valve generator: expected diameter > 0, 0 < gamma < 90 deg, width ratio > 0, commissure height > 0");
   const double d = opt.diameter, R = d / 2;
+  if (!(opt.graft_commissure_gap >= 0 && opt.graft_commissure_gap < 0.5 * opt.width_ratio * R))
+    throw_input_error("aortic valve generator", "graft_commissure_gap",
+                      "[0, " + format_number(0.5 * opt.width_ratio * R) + ") mm (under a quarter of a leaflet's width)",
+                      format_number(opt.graft_commissure_gap) + " mm");
   const double native_top = d * std::pow(std::sin(opt.width_ratio / 2), 2) / std::tan(opt.gamma_deg * kPi / 180) +
                             opt.commissure_height;
   TriMesh mesh;
@@ -221,22 +225,26 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
     if (!(ws >= 1 && ws < 2 && hs > 0.5 && hs < 2))
       throw InputError("aortic valve generator: leaflet " + std::to_string(k) +
                        ": expected width scale in [1, 2) and height scale in (0.5, 2)");
-    any_graft |= ws != 1 || hs != 1;
+    const bool graft = ws != 1 || hs != 1;
+    any_graft |= graft;
     const CuspShape shape{ws * opt.width_ratio * d / 2, hs * d / std::tan(opt.gamma_deg * kPi / 180), ws * d,
                           hs * opt.commissure_height};
     int attached = 0;
     PlanarMeshOptions mo = opt.mesh;
     mo.seed = opt.mesh.seed + 7919 * k;
     const PlanarMesh pm = mesh_planar_domain(cusp_domain(shape, &attached), mo);
-    // Rest: wrapped on radius ws R (isometric); start: the same angles on the root radius.
+    // Rest: wrapped on radius ws R (isometric); start: on the root radius at the same angles,
+    // for a graft scaled so that each side moves in by the gap (its half-angle at rest is width_ratio).
     const double Rk = ws * R, phi0 = 2 * kPi * k / 3;
+    const double start_angle_scale = graft ? 1 - opt.graft_commissure_gap / (R * opt.width_ratio) : 1.0;
     const int base = mesh.num_nodes();
     mesh.points.conservativeResize(base + static_cast<int>(pm.points.size()), 3);
     initial.conservativeResize(base + static_cast<int>(pm.points.size()), 3);
     for (size_t i = 0; i < pm.points.size(); ++i) {
       const double phi = phi0 + pm.points[i].x() / Rk, z = pm.points[i].y() - native_top;
+      const double phi_start = phi0 + start_angle_scale * pm.points[i].x() / Rk;
       mesh.points.row(base + i) << Rk * std::cos(phi), Rk * std::sin(phi), z;
-      initial.row(base + i) << R * std::cos(phi), R * std::sin(phi), z;
+      initial.row(base + i) << R * std::cos(phi_start), R * std::sin(phi_start), z;
       const bool boundary = static_cast<int>(i) < pm.num_boundary, on_attachment = static_cast<int>(i) < attached;
       mesh.roles.push_back(boundary && on_attachment ? NodeRole::fixed : NodeRole::free);
       mesh.boundary.push_back(!boundary ? BoundaryType::interior

@@ -48,14 +48,25 @@ TriMesh generate_three_leaflet_valve(const LeafletOptions& opt);
 /// the attachment curve y = d sin²(x/d) / tan γ (x from the midline, |x| <= w/2, w = 1.047 d,
 /// i.e. a third of the root circumference: the unrolled intersection of the root cylinder
 /// with a plane tilted by γ), on the sides by the commissures (height h_c) and on top by the
-/// straight free edge. Three leaflets are joined at the commissures and wrapped into the
-/// cylinder of diameter d, free edges at z = 0 for native leaflets, normals toward the axis.
+/// straight free edge. Three leaflets meet at the commissures, wrapped into the cylinder of
+/// diameter d, free edges at z = 0 for native leaflets, normals toward the axis. They share no
+/// nodes: w = 1.047 d falls short of a third of the circumference (π d / 3), so neighbouring
+/// sides lie 2 e-4 d apart (0.004 mm at 20 mm), and contact leaves such pairs out
+/// (contact_base.hpp).
 ///
 /// Grafts: leaflet k's flat shape may be scaled by width_scale[k] and height_scale[k]. Its
 /// nadir stays on the root's; a taller graft reaches higher up the commissures (seed 4.4).
 /// A wider graft has more free edge than its third of the root: its rest shape is wrapped
 /// on a cylinder of radius width_scale · d/2 (an isometry) and it starts at the root's radius,
 /// compressed circumferentially (TriMesh::initial) until the pressure takes up the slack.
+/// A graft is sewn beside its neighbours, not onto their commissure lines: its start angles
+/// are drawn in so that its sides lie graft_commissure_gap along the root wall from theirs,
+/// which gathers its attachment by 2 gap / w (2.9 % at the default). Sewn onto the same line,
+/// the two leaflets' triangles start within the contact's reach, are left out of it, and
+/// hinge through each other at the wall as they close (40 quasi-static graft closures: 164
+/// intersecting pairs in 15 of them sewn onto the same line, none with the gap). The default, 0.3 mm, is the smallest round value above the
+/// contact models' default reach (0.25 mm), so that no pair of the two leaflets starts within
+/// it; the sizing study's dependence on it: docs/results/aortic-valve.md.
 ///
 /// Fibers (Fig. 4.6): parallel to the free edge, or at |fiber_angle_deg| to it in a pattern
 /// symmetric about the midline: a positive angle runs down toward the midline like a hammock,
@@ -69,6 +80,7 @@ struct AorticValveOptions {
   double fiber_angle_deg = -25.0;   // 0 = parallel to the free edge
   double width_scale[3] = {1, 1, 1};
   double height_scale[3] = {1, 1, 1};
+  double graft_commissure_gap = 0.3;  // mm, along the root wall (start positions) on each side of a graft
   PlanarMeshOptions mesh{220, 1};   // per leaflet
 };
 TriMesh generate_aortic_valve(const AorticValveOptions& opt);
