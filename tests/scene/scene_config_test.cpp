@@ -99,13 +99,13 @@ TEST_CASE("solver.quasistatic.approach: newton by default, dynamic with its sett
                     Catch::Contains("solver.quasistatic.approach_settle_tolerance"));
 }
 
-TEST_CASE("solver.quasistatic.forcing: adaptive by default, fixed on request, anything else refused", "[scene][config]") {
+TEST_CASE("solver.quasistatic.forcing: fixed by default, adaptive on request, anything else refused", "[scene][config]") {
   auto forcing = [](const json& block) {
     const json j = {{"mesh", "m.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
                     {"pressure", {{"value", "80 mmHg"}}}, {"solver", {{"type", "quasistatic"}, {"quasistatic", block}}}};
     return parse_scene(j, "s.json", ".").quasistatic.forcing;
   };
-  CHECK(forcing(json::object()) == NewtonForcing::adaptive);
-  CHECK(forcing({{"forcing", "fixed"}}) == NewtonForcing::fixed);
+  CHECK(forcing(json::object()) == NewtonForcing::fixed);
+  CHECK(forcing({{"forcing", "adaptive"}}) == NewtonForcing::adaptive);
   CHECK_THROWS_WITH(forcing({{"forcing", "exact"}}), Catch::Contains("solver.quasistatic.forcing"));
 }

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """Checks that the normal aortic valve's recorded choices (configs/aortic_valve_normal.json)
-are what the tools use: valve-generate's default fiber angle (from its summary), the closure
+are what the tools use: valve-generate's default fiber angle and graft commissure gap (from its
+summary), the closure
 scene's bending modulus and root preset, and that preset's modulus, stiffening pressure and
 stiffness index.
 
@@ -23,6 +24,8 @@ def main():
     preset = json.load(open(os.path.join(repo, "configs", "materials", preset_name + ".json")))
     pairs = [
         ("fiber_angle_deg", record["fiber_angle_deg"], "valve-generate aortic_valve's default", summary["parameters"]["fiber_angle_deg"]),
+        ("graft_commissure_gap_mm", record["graft_commissure_gap_mm"], "valve-generate aortic_valve's default",
+         summary["parameters"]["graft_commissure_gap_mm"]),
         ("bending_modulus", record["bending_modulus"], "the scene's bending.modulus", scene.get("bending", {}).get("modulus")),
         ("root_preset", record["root_preset"], "the scene's aortic_root.preset", preset_name),
         ("root_youngs_modulus", record["root_youngs_modulus"], "the root's youngs_modulus",

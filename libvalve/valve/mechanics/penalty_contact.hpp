@@ -143,8 +143,8 @@ class PenaltyContactTerm final : public ContactForceTerm {
   /// Gauss–Newton part.
   void set_jacobian_mode(JacobianMode mode) override { jacobian_mode_ = mode; }
   /// The barrier excludes the pairs within its reach where the solve starts, as at rest: two
-  /// leaflets sewn onto the same stretch of distended root wall start 0.004 mm apart, and the
-  /// collision bound held a widened graft's closure to steps of 1e-3 of Newton's.
+  /// leaflets meeting along a commissure start 0.004 mm apart on the distended root wall, and
+  /// their collision bound would hold every step to a few thousandths of a millimetre.
   void start_at(const VecX& x) override;
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
   bool energy(const State& s, double& e) const override;
