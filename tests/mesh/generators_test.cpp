@@ -243,8 +243,13 @@ TEST_CASE("a graft starts a gap along the wall from its neighbours' commissures,
     CHECK(closest < 1.0);  // still beside them: within a mesh edge (about 0.8 mm)
   }
   AorticValveOptions bad;
+  bad.width_scale[0] = 1.07;
   bad.graft_commissure_gap = -0.1;
   CHECK_THROWS_AS(generate_aortic_valve(bad), InputError);
+  // Without a graft the gap has nothing to act on and is not checked.
+  AorticValveOptions native_only;
+  native_only.graft_commissure_gap = -0.1;
+  CHECK_NOTHROW(generate_aortic_valve(native_only));
 }
 
 TEST_CASE("the root of a valve with a wider graft is the one its leaflets are sewn into", "[mechanics][root]") {

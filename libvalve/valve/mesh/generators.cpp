@@ -209,7 +209,9 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
       !(opt.commissure_height > 0))
     throw InputError("aortic valve generator: expected diameter > 0, 0 < gamma < 90 deg, width ratio > 0, commissure height > 0");
   const double d = opt.diameter, R = d / 2;
-  if (!(opt.graft_commissure_gap >= 0 && opt.graft_commissure_gap < 0.5 * opt.width_ratio * R))
+  bool has_graft = false;
+  for (int k = 0; k < 3; ++k) has_graft |= opt.width_scale[k] != 1 || opt.height_scale[k] != 1;
+  if (has_graft && !(opt.graft_commissure_gap >= 0 && opt.graft_commissure_gap < 0.5 * opt.width_ratio * R))
     throw_input_error("aortic valve generator", "graft_commissure_gap",
                       "[0, " + format_number(0.5 * opt.width_ratio * R) + ") mm (under a quarter of a leaflet's width)",
                       format_number(opt.graft_commissure_gap) + " mm");
@@ -219,14 +221,12 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
   mesh.points.resize(0, 3);
   mesh.fiber.resize(0, 3);
   MatX3 initial(0, 3);
-  bool any_graft = false;
   for (int k = 0; k < 3; ++k) {
     const double ws = opt.width_scale[k], hs = opt.height_scale[k];
     if (!(ws >= 1 && ws < 2 && hs > 0.5 && hs < 2))
       throw InputError("aortic valve generator: leaflet " + std::to_string(k) +
                        ": expected width scale in [1, 2) and height scale in (0.5, 2)");
     const bool graft = ws != 1 || hs != 1;
-    any_graft |= graft;
     const CuspShape shape{ws * opt.width_ratio * d / 2, hs * d / std::tan(opt.gamma_deg * kPi / 180), ws * d,
                           hs * opt.commissure_height};
     int attached = 0;
@@ -265,7 +265,7 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
       mesh.leaflet.push_back(k);
     }
   }
-  if (any_graft) mesh.initial = initial;
+  if (has_graft) mesh.initial = initial;
   weld(mesh, 1e-6 * d);
   return mesh;
 }
