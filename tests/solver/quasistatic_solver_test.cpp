@@ -57,3 +57,10 @@ TEST_CASE("the adaptive forcing term stays within its ceiling and its floor", "[
   // r falls 1e4-fold: 0.9e-8, raised to the floor 1e-3.
   CHECK(forcing.next(1e-4) == Approx(1e-3));
 }
+
+TEST_CASE("the adaptive forcing term is never tighter than a fixed tolerance above its ceiling", "[solver][quasistatic]") {
+  // iterative_tolerance 0.05 (above the 0.01 ceiling): adaptive then solves to 0.05, as fixed would.
+  ForcingTerm forcing(0.05, 1e-6);
+  CHECK(forcing.next(1.0) == Approx(0.05));
+  CHECK(forcing.next(1e-3) == Approx(0.05));
+}
