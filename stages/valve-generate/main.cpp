@@ -10,10 +10,10 @@
 // the CalculiX cross-check) | aortic_leaflet | three_leaflet_valve (Ch. 3) | aortic_valve (Ch. 4:
 // [--gamma DEG] [--commissure-height MM] [--graft-leaflet K --graft-width-pct W
 // --graft-height-pct H [--graft-commissure-gap MM]], fibers at 25 deg to the free edge rising
-// toward each leaflet's midline by default (-25; a positive angle descends toward it; the normal valve's choices:
-// configs/aortic_valve_normal.json). A graft is sewn in --graft-commissure-gap (default 0.3 mm)
-// along the root wall from its neighbours' commissures. --count K writes K meshes with
-// seeds S, S+1, ..., named NAME_<seed>.vtp.
+// toward each leaflet's midline by default (-25; a positive angle descends toward it; the
+// normal valve's choices: configs/aortic_valve_normal.json). A graft is sewn in
+// --graft-commissure-gap (default 0.3 mm) along the root wall from its neighbours'
+// commissures. --count K writes K meshes with seeds S, S+1, ..., named NAME_<seed>.vtp.
 #include <cstdio>
 #include <filesystem>
 

@@ -73,7 +73,8 @@ TEST_CASE("analytic mesh: a graft scales one aortic leaflet, seeds vary the mesh
         for (int k = 0; k < 3; ++k) {
           const Vec3 p = m.initial.row(m.triangles[t][k]);
           // Leaflet 1 is centred on 120°: angles from its midline.
-          widest = std::max(widest, std::abs(std::remainder(std::atan2(p.y(), p.x()) - 2.0943951023931953, 6.283185307179586)));
+          const double pi = std::acos(-1.0);
+          widest = std::max(widest, std::abs(std::remainder(std::atan2(p.y(), p.x()) - 2 * pi / 3, 2 * pi)));
         }
     return widest;
   };

@@ -209,8 +209,8 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
       !(opt.commissure_height > 0))
     throw InputError("aortic valve generator: expected diameter > 0, 0 < gamma < 90 deg, width ratio > 0, commissure height > 0");
   const double d = opt.diameter, R = d / 2;
-  bool has_graft = false;
-  for (int k = 0; k < 3; ++k) has_graft |= opt.width_scale[k] != 1 || opt.height_scale[k] != 1;
+  auto is_graft = [&](int k) { return opt.width_scale[k] != 1 || opt.height_scale[k] != 1; };
+  const bool has_graft = is_graft(0) || is_graft(1) || is_graft(2);
   if (has_graft && !(opt.graft_commissure_gap >= 0 && opt.graft_commissure_gap < 0.5 * opt.width_ratio * R))
     throw_input_error("aortic valve generator", "graft_commissure_gap",
                       "[0, " + format_number(0.5 * opt.width_ratio * R) + ") mm (under a quarter of a leaflet's width)",
@@ -226,7 +226,6 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
     if (!(ws >= 1 && ws < 2 && hs > 0.5 && hs < 2))
       throw InputError("aortic valve generator: leaflet " + std::to_string(k) +
                        ": expected width scale in [1, 2) and height scale in (0.5, 2)");
-    const bool graft = ws != 1 || hs != 1;
     const CuspShape shape{ws * opt.width_ratio * d / 2, hs * d / std::tan(opt.gamma_deg * kPi / 180), ws * d,
                           hs * opt.commissure_height};
     int attached = 0;
@@ -236,7 +235,7 @@ TriMesh generate_aortic_valve(const AorticValveOptions& opt) {
     // Rest: wrapped on radius ws R (isometric); start: on the root radius at the same angles,
     // for a graft scaled so that each side moves in by the gap (its half-angle at rest is width_ratio).
     const double Rk = ws * R, phi0 = 2 * kPi * k / 3;
-    const double start_angle_scale = graft ? 1 - opt.graft_commissure_gap / (R * opt.width_ratio) : 1.0;
+    const double start_angle_scale = is_graft(k) ? 1 - opt.graft_commissure_gap / (R * opt.width_ratio) : 1.0;
     const int base = mesh.num_nodes();
     mesh.points.conservativeResize(base + static_cast<int>(pm.points.size()), 3);
     initial.conservativeResize(base + static_cast<int>(pm.points.size()), 3);

@@ -64,9 +64,10 @@ TriMesh generate_three_leaflet_valve(const LeafletOptions& opt);
 /// which gathers its attachment by 2 gap / w (2.9 % at the default). Sewn onto the same line,
 /// the two leaflets' triangles start within the contact's reach, are left out of it, and
 /// hinge through each other at the wall as they close (40 quasi-static graft closures: 164
-/// intersecting pairs in 15 of them sewn onto the same line, none with the gap). The default, 0.3 mm, is the smallest round value above the
-/// contact models' default reach (0.25 mm), so that no pair of the two leaflets starts within
-/// it; the sizing study's dependence on it: docs/results/aortic-valve.md.
+/// intersecting pairs in 15 of them sewn onto the same line, none with the gap). The default,
+/// 0.3 mm, is the smallest round value above the contact models' default reach (0.25 mm), so
+/// that no pair of the two leaflets starts within it; the sizing study's dependence on it:
+/// docs/results/aortic-valve.md.
 ///
 /// Fibers (Fig. 4.6): parallel to the free edge, or at |fiber_angle_deg| to it in a pattern
 /// symmetric about the midline: a positive angle runs down toward the midline like a hammock,
