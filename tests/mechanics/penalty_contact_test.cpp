@@ -342,6 +342,42 @@ TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the 
   CHECK(bounded > 50);
 }
 
+TEST_CASE("barrier contact: a face hinging beside a node is measured along the step, not cut to the gap", "[mechanics][penalty_contact]") {
+  // Node 3 hangs 0.1 mm over the lower face at barycentric weight 1/4 of its node 2. Raising
+  // node 2 by a hinges the face about its edge 0-1: the face under the node rises by a/4, so
+  // the gap is 0.1 − a/4 (less the tilt's small cosine). The supporting-plane bound alone
+  // counts node 2's whole rise as closing: a / (0.8 · 0.1), 2.5 for a = 0.2, whose whole step
+  // keeps 0.05 mm; a = 0.6 reaches the face at t = 2/3, so the bound must stay above 1.5.
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  PenaltyContactTerm c(two_sheets(1.0), opt, std::vector<char>(18, 0));  // apart at rest
+  const VecX x = flatten(two_sheets(0.1).points);
+  c.update_couplings(x);
+  auto gap_along = [&](const VecX& step) {
+    double smallest = 1e9;
+    for (int k = 0; k <= 100; ++k) {
+      const VecX y = x + (k / 100.0) * step;
+      const Vec3 p = node3(y, 3), a = node3(y, 0), b = node3(y, 1), cc = node3(y, 2);
+      const Vec3 w = closest_point_weights(p, a, b, cc);
+      smallest = std::min(smallest, (p - (w[0] * a + w[1] * b + w[2] * cc)).norm());
+    }
+    return smallest;
+  };
+  for (double rise : {0.2, 0.6}) {
+    INFO("node 2 raised by " << rise << " mm");
+    VecX hinge = VecX::Zero(18);
+    hinge[3 * 2 + 2] = rise;
+    const double ratio = c.step_ratio(x, hinge);
+    if (rise < 0.4) {
+      CHECK(ratio <= 1);
+      CHECK(gap_along(hinge) == Approx((0.1 - rise / 4) / std::sqrt(1 + rise * rise / 4)).epsilon(1e-3));
+    } else {
+      CHECK(ratio > 1.5);
+      CHECK(gap_along(hinge / ratio) > 0.2 * 0.1);
+    }
+  }
+}
+
 TEST_CASE("penalty contact Jacobian: exact over a fixed face, symmetric and non-positive", "[mechanics][penalty_contact][fd]") {
   const TriMesh m = two_sheets(0.1);
   std::vector<char> fixed(18, 0);

@@ -114,45 +114,6 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
   stats_.broad_phase_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
-  // No state seen yet: the uniform bound, every node within max_step_length() = min(L, 0.4 δ).
-  if (pair_gaps_.size() != face_pairs_.size() + edge_pairs_.size() || built_at_.size() != x.size())
-    return ForceTerm::step_ratio(x, dx);
-  // The candidate list: every node within 2L of where the list was built. Written as
-  // (moved since the build + |dx|) / 2L rather than |dx| / (2L − moved), although both accept
-  // the same steps: the first stays high while the list ages, which holds BDF2's step growth
-  // back until the next rebuild. With the second (linear in the step) the remeshed Texas
-  // TriValve closure grew its step into a chatter: 35,727 steps and 424 s against 2,103 steps
-  // and 28 s (the sample mitral closure: 152 against 159 steps).
-  double ratio = 0;
-  for (int i = 0; i < dx.size() / 3; ++i)
-    ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
-  // Every candidate pair closes by less than 0.8 max(δ, d); with the barrier, by less than
-  // 0.8 (d − ξ), so that none reaches the offset.
-  const double delta = opt_.separation;
-  // A pair closes by at most twice the largest node step: one with room for that cannot raise
-  // the ratio above what it already is, and is not looked at further.
-  const double largest_step = largest_node_norm(dx);
-  size_t k = 0;
-  auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
-    const PairGap& g = pair_gaps_[k++];
-    const double room = barrier() ? std::max(g.distance - opt_.offset, 1e-300) : std::max(delta, g.distance);
-    if (2 * largest_step <= ratio * 0.8 * room) return;
-    double closing = 0;
-    for (int a : side_a)
-      for (int b : side_b) {
-        const Vec3 relative = node3(dx, b) - node3(dx, a);
-        closing = std::max(closing, g.normal.isZero() ? relative.norm() : g.normal.dot(relative));
-      }
-    ratio = std::max(ratio, closing / (0.8 * room));
-  };
-  const auto& tris = topology_.triangles();
-  for (const auto& [i, t] : face_pairs_) check({i}, {tris[t][0], tris[t][1], tris[t][2]});
-  const auto& edges = topology_.edges();
-  for (const auto& [be, e] : edge_pairs_) check({edges[be].first, edges[be].second}, {edges[e].first, edges[e].second});
-  return ratio;
-}
-
 namespace {
 
 // The closest points of a pair: node p0 and triangle (p1, p2, p3), or edges (p0, p1) and
@@ -225,7 +186,103 @@ bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& 
   return hess.allFinite();
 }
 
+// Additive continuous collision detection (Li et al. 2021, "Codimensional Incremental
+// Potential Contact", Algorithm 1) for one pair moving from y by t·p, t in [0, t_end]: how far
+// along the step its gap s = d − ξ surely stays above `keep` · s(0). The motion relative to
+// the pair's mean, p_j − p̄, bounds how fast any point of one side nears any point of the
+// other: by l_p = |p_0 − p̄| + max_j |p_j − p̄| over the other side (a point of a triangle or
+// an edge moves as a convex combination of its nodes). So from a gap s the pair may advance
+// by 0.9 s / l_p and not touch; the distance is then measured again, and the advance stops
+// before the first measured gap below keep · s(0). Unlike the supporting-plane bound it sees
+// what the step does to the distance: a pair that slides or hinges past its neighbour at a
+// tenth of a millimetre without nearing it is not cut to that tenth.
+double additive_ccd_fraction(bool edge, const PairVector12& y, const PairVector12& p, double offset, double keep,
+                             double t_end) {
+  Vec3 mean = Vec3::Zero();
+  for (int j = 0; j < 4; ++j) mean += 0.25 * p.segment<3>(3 * j);
+  double first = 0, second = 0;
+  for (int j = 0; j < 4; ++j) {
+    const double speed = (p.segment<3>(3 * j) - mean).norm();
+    double& side = (edge ? j < 2 : j < 1) ? first : second;
+    side = std::max(side, speed);
+  }
+  const double lp = first + second;
+  if (!(lp > 0)) return t_end;
+  auto gap_at = [&](double t) {
+    const PairVector12 z = y + t * p;
+    return pair_geometry(edge, z.segment<3>(0), z.segment<3>(3), z.segment<3>(6), z.segment<3>(9)).diff.norm() - offset;
+  };
+  const double s0 = gap_at(0), target = keep * s0;
+  if (!(s0 > 0)) return 0;
+  // The first advance may use the whole margin down to the target; later ones 0.9 of the
+  // gap, as the distance is measured again after each (a pair that keeps a small gap while
+  // sliding then takes ~l_p / gap advances; past kMaxAdvances the fraction reached stands).
+  constexpr int kMaxAdvances = 200;
+  double t = 0, advance = (s0 - target) / lp;
+  for (int i = 0; i < kMaxAdvances && t < t_end; ++i) {
+    const double next = std::min(t + advance, t_end);
+    const double s = gap_at(next);
+    if (!(s >= target)) return t;
+    t = next;
+    advance = 0.9 * s / lp;
+  }
+  return t;
+}
+
 }  // namespace
+
+double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
+  // No state seen yet: the uniform bound, every node within max_step_length() = min(L, 0.4 δ).
+  if (pair_gaps_.size() != face_pairs_.size() + edge_pairs_.size() || built_at_.size() != x.size())
+    return ForceTerm::step_ratio(x, dx);
+  // The candidate list: every node within 2L of where the list was built. Written as
+  // (moved since the build + |dx|) / 2L rather than |dx| / (2L − moved), although both accept
+  // the same steps: the first stays high while the list ages, which holds BDF2's step growth
+  // back until the next rebuild. With the second (linear in the step) the remeshed Texas
+  // TriValve closure grew its step into a chatter: 35,727 steps and 424 s against 2,103 steps
+  // and 28 s (the sample mitral closure: 152 against 159 steps).
+  double ratio = 0;
+  for (int i = 0; i < dx.size() / 3; ++i)
+    ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
+  // Every candidate pair closes by less than 0.8 max(δ, d); with the barrier, by less than
+  // 0.8 (d − ξ), so that none reaches the offset.
+  const double delta = opt_.separation;
+  // A pair closes by at most twice the largest node step: one with room for that cannot raise
+  // the ratio above what it already is, and is not looked at further.
+  const double largest_step = largest_node_norm(dx);
+  size_t k = 0;
+  auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
+    const PairGap& g = pair_gaps_[k++];
+    const double room = barrier() ? std::max(g.distance - opt_.offset, 1e-300) : std::max(delta, g.distance);
+    if (2 * largest_step <= ratio * 0.8 * room) return;
+    double closing = 0;
+    for (int a : side_a)
+      for (int b : side_b) {
+        const Vec3 relative = node3(dx, b) - node3(dx, a);
+        closing = std::max(closing, g.normal.isZero() ? relative.norm() : g.normal.dot(relative));
+      }
+    double pair_ratio = closing / (0.8 * room);
+    if (pair_ratio <= ratio) return;
+    // With the barrier, a pair that would shorten the step is measured along it (additive
+    // CCD, keeping the same 0.2 of its gap): where that lets the step go further, it may.
+    if (barrier()) {
+      PairVector12 y, p;
+      int j = 0;
+      for (int node : side_a) y.segment<3>(3 * j) = node3(x, node), p.segment<3>(3 * j) = node3(dx, node), ++j;
+      for (int node : side_b) y.segment<3>(3 * j) = node3(x, node), p.segment<3>(3 * j) = node3(dx, node), ++j;
+      const double t_end = 1 / std::max(ratio, 1.0);
+      const double t = additive_ccd_fraction(side_a.size() == 2, y, p, opt_.offset, 0.2, t_end);
+      pair_ratio = std::min(pair_ratio, t >= t_end ? std::max(ratio, 1.0) : 1 / std::max(t, 1e-300));
+    }
+    ratio = std::max(ratio, pair_ratio);
+  };
+  const auto& tris = topology_.triangles();
+  for (const auto& [i, t] : face_pairs_) check({i}, {tris[t][0], tris[t][1], tris[t][2]});
+  const auto& edges = topology_.edges();
+  for (const auto& [be, e] : edge_pairs_) check({edges[be].first, edges[be].second}, {edges[e].first, edges[e].second});
+  return ratio;
+}
+
 
 void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps) const {
   out.clear();

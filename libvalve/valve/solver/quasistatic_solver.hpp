@@ -24,12 +24,14 @@
 //   that fails with the exact ones is taken again with projected ones at the same δ
 //   (ExactHessianSchedule: when they come back).
 // * Line search: from the largest step the limits allow (a trust radius on node moves, and
-//   every term's step_ratio: the contact barrier's conservative collision bound, so that no
+//   every term's step_ratio: the contact barrier's conservative collision bounds, so that no
 //   iterate ever intersects), halved until Φ_k falls by the Armijo fraction, or failing that
 //   the residual |f| does: near equilibrium Φ_k (the pressure frozen) need not fall along
 //   Newton's direction for f = 0, whose matrix holds the pressure's non-symmetric stiffness.
 //   Every accepted step lowers Φ_k or |f|; neither merit is ever allowed to rise on its own
-//   test, and the contact energy is finite at every iterate.
+//   test, and the contact energy is finite at every iterate. Since Φ_k changes with k, two
+//   iterates can each lower the other's merit; a step back to the previous iterate is
+//   refused, and the search goes on halving it.
 // Load continuation: the load factor steps to the target, halving the increment when an
 // increment fails to converge within max_iterations.
 // Linear algebra: below 6,000 unknowns the whole system (with the pressure's non-symmetric
