@@ -56,9 +56,9 @@ namespace valve {
 /// gain: by the gain ratio of trust-region methods, the merit's fall over the quadratic
 ///   model's, (Φ_k(x_k) − Φ_k(x_k + αΔ)) / (α f·Δ (1 − α/2)): ×4 (×2 when a step bound
 ///   shortened the step) after a step taken at once with a gain above 3/4, ×0.5 below 1/4.
-/// Neither converges on every closure measured (docs/results/quasistatic-solver.md): `step`
-/// closed the aortic valve from ten perturbed starts and stalled on the remeshed Texas
-/// TriValve; `gain` closed that one and stalled on two of the ten aortic starts.
+/// `step` converges on every closure measured (docs/results/quasistatic-solver.md): the remeshed
+/// Texas TriValve in 957 iterations, where `gain` takes 326; `gain` stalled on two of ten aortic
+/// starts with descending fibers in the slack root.
 enum class ProximalStepRule { step, gain };
 
 /// Largest proximal step δ (ms²): from there on the M/δ term is nothing and δ stops growing.
@@ -90,14 +90,15 @@ class ExactHessianSchedule {
 ///   convergence stays superlinear, and the last directions are solved just well enough to
 ///   reach τ.
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
-///   40.97 s with this ceiling, 39.51 s with 0.1, 48.55 s fixed at 1e-6 (2 jobs); six
-///   perturbed sample mitral closures took 187-231 iterations with 0.1, 106-194 with 0.01 and
-///   116-161 fixed (the Newton path, not the solves, sets these: they scatter by ±30 %).
+///   37.8 s against 44.3 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
+///   82-138 iterations against 85-130 fixed (the Newton path, not the solves, sets these).
+///   With a ceiling of 0.1 (the supporting-plane collision bound alone) the mitral closures
+///   took 187-231.
 ///   Why it is not the default: a direction solved to 1e-2 differs from the exact one by that
 ///   much, and where BiCGStab stops is a discrete decision, so starts 1e-6 mm apart follow
 ///   paths that part by 1e-2 and land on neighbouring equilibria: on the normal aortic valve
-///   ten such starts moved the closed shape by up to 0.12 mm (mean over nodes) against 0.037 mm
-///   fixed, over the 0.05 mm the solver is held to.
+///   31 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over nodes)
+///   the solver is held to, against 1 of 40 fixed.
 enum class NewtonForcing { adaptive, fixed };
 
 /// The forcing sequence η_k of NewtonForcing::adaptive for one load increment.
