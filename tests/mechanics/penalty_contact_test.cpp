@@ -378,6 +378,37 @@ TEST_CASE("barrier contact: a face hinging beside a node is measured along the s
   }
 }
 
+TEST_CASE("barrier contact: a free edge tilting about the crossing point is measured along the step", "[mechanics][penalty_contact]") {
+  // Leaflet 0 hangs below its edge (-1,0,0)-(1,0,0), leaflet 1 stands above its edge
+  // (0,-1,h)-(0,1,h), h = 0.1 (1 mm apart at rest). Turning leaflet 1 by 30° about the x axis
+  // through (0,0,h), taken as a straight step, keeps its edge's midpoint on the crossing: the
+  // edges' distance falls only to h cos 30°. The supporting-plane bound counts the lower end's
+  // drop of sin 30° as closing, 0.5 / (0.8 h) = 6.25; measured along the step the whole step
+  // may go.
+  const double h = 0.1, angle = std::acos(-1.0) / 6;
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  PenaltyContactTerm c(crossing_free_edges(1.0), opt, std::vector<char>(18, 0));
+  const VecX x = flatten(crossing_free_edges(h).points);
+  c.update_couplings(x);
+  VecX turn = VecX::Zero(18);
+  for (int i : {3, 4, 5}) {
+    const Vec3 r = node3(x, i) - Vec3(0, 0, h);
+    const Vec3 turned(r.x(), std::cos(angle) * r.y() - std::sin(angle) * r.z(),
+                      std::sin(angle) * r.y() + std::cos(angle) * r.z());
+    node3(turn, i) = turned - r;
+  }
+  CHECK(c.step_ratio(x, turn) <= 1);
+  double smallest = 1e9;
+  for (int k = 0; k <= 100; ++k) {
+    const VecX y = x + (k / 100.0) * turn;
+    const auto [s, u] = closest_segment_parameters(node3(y, 0), node3(y, 1), node3(y, 3), node3(y, 4));
+    smallest = std::min(smallest, (node3(y, 0) + s * (node3(y, 1) - node3(y, 0)) - node3(y, 3) -
+                                   u * (node3(y, 4) - node3(y, 3))).norm());
+  }
+  CHECK(smallest == Approx(h * std::cos(angle)).epsilon(1e-3));
+}
+
 TEST_CASE("penalty contact Jacobian: exact over a fixed face, symmetric and non-positive", "[mechanics][penalty_contact][fd]") {
   const TriMesh m = two_sheets(0.1);
   std::vector<char> fixed(18, 0);

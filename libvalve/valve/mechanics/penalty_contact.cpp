@@ -193,7 +193,8 @@ bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& 
 // other: by l_p = |p_0 − p̄| + max_j |p_j − p̄| over the other side (a point of a triangle or
 // an edge moves as a convex combination of its nodes). So from a gap s the pair may advance
 // by 0.9 s / l_p and not touch; the distance is then measured again, and the advance stops
-// before the first measured gap below keep · s(0). Unlike the supporting-plane bound it sees
+// before the first measured gap below keep · s(0) (between measurements the gap keeps a tenth
+// of the last one measured). Unlike the supporting-plane bound it sees
 // what the step does to the distance: a pair that slides or hinges past its neighbour at a
 // tenth of a millimetre without nearing it is not cut to that tenth.
 double additive_ccd_fraction(bool edge, const PairVector12& y, const PairVector12& p, double offset, double keep,

@@ -58,7 +58,8 @@ namespace valve {
 ///   shortened the step) after a step taken at once with a gain above 3/4, ×0.5 below 1/4.
 /// `step` converges on every closure measured (docs/results/quasistatic-solver.md): the remeshed
 /// Texas TriValve in 957 iterations, where `gain` takes 326; `gain` stalled on two of ten aortic
-/// starts with descending fibers in the slack root.
+/// starts with descending fibers in the slack root (with the supporting-plane collision bound
+/// alone).
 enum class ProximalStepRule { step, gain };
 
 /// Largest proximal step δ (ms²): from there on the M/δ term is nothing and δ stops growing.
