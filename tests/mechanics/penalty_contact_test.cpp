@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include "support/test_meshes.hpp"
@@ -86,6 +87,25 @@ TriMesh crossing_free_edges(double gap) {
   m.leaflet = {0, 1};
   m.fill_defaults();
   return m;
+}
+
+// Distance from node p to triangle (a, b, c), and between edges (a, b) and (c, d), at positions y.
+double node_face_distance(const VecX& y, int p, int a, int b, int c) {
+  const Vec3 w = closest_point_weights(node3(y, p), node3(y, a), node3(y, b), node3(y, c));
+  return (node3(y, p) - (w[0] * node3(y, a) + w[1] * node3(y, b) + w[2] * node3(y, c))).norm();
+}
+double edge_edge_distance(const VecX& y, int a, int b, int c, int d) {
+  const Vec3 xa = node3(y, a), xb = node3(y, b), xc = node3(y, c), xd = node3(y, d);
+  const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
+  return (xa + s * (xb - xa) - xc - u * (xd - xc)).norm();
+}
+
+// The smallest `distance` at `samples` + 1 evenly spaced points of the straight step from x.
+template <class Distance>
+double smallest_along(const VecX& x, const VecX& step, Distance distance, int samples = 100) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= samples; ++k) smallest = std::min(smallest, distance(VecX(x + (k / double(samples)) * step)));
+  return smallest;
 }
 
 }  // namespace
@@ -331,13 +351,8 @@ TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the 
     const double ratio = c.step_ratio(x, dx);
     if (ratio <= 1) continue;
     ++bounded;
-    const VecX step = dx / ratio;
-    for (int k = 0; k <= 50; ++k) {
-      const VecX y = x + (k / 50.0) * step;
-      const Vec3 p = node3(y, 3), a = node3(y, 0), b = node3(y, 1), cc = node3(y, 2);
-      const Vec3 w = closest_point_weights(p, a, b, cc);
-      CHECK((p - (w[0] * a + w[1] * b + w[2] * cc)).norm() > opt.offset);
-    }
+    const auto node_to_face = [](const VecX& y) { return node_face_distance(y, 3, 0, 1, 2); };
+    CHECK(smallest_along(x, dx / ratio, node_to_face, 50) > opt.offset);
   }
   CHECK(bounded > 50);
 }
@@ -354,14 +369,7 @@ TEST_CASE("barrier contact: a face hinging beside a node is measured along the s
   const VecX x = flatten(two_sheets(0.1).points);
   c.update_couplings(x);
   auto gap_along = [&](const VecX& step) {
-    double smallest = 1e9;
-    for (int k = 0; k <= 100; ++k) {
-      const VecX y = x + (k / 100.0) * step;
-      const Vec3 p = node3(y, 3), a = node3(y, 0), b = node3(y, 1), cc = node3(y, 2);
-      const Vec3 w = closest_point_weights(p, a, b, cc);
-      smallest = std::min(smallest, (p - (w[0] * a + w[1] * b + w[2] * cc)).norm());
-    }
-    return smallest;
+    return smallest_along(x, step, [](const VecX& y) { return node_face_distance(y, 3, 0, 1, 2); });
   };
   for (double rise : {0.2, 0.6}) {
     INFO("node 2 raised by " << rise << " mm");
@@ -399,13 +407,7 @@ TEST_CASE("barrier contact: a free edge tilting about the crossing point is meas
     node3(turn, i) = turned - r;
   }
   CHECK(c.step_ratio(x, turn) <= 1);
-  double smallest = 1e9;
-  for (int k = 0; k <= 100; ++k) {
-    const VecX y = x + (k / 100.0) * turn;
-    const auto [s, u] = closest_segment_parameters(node3(y, 0), node3(y, 1), node3(y, 3), node3(y, 4));
-    smallest = std::min(smallest, (node3(y, 0) + s * (node3(y, 1) - node3(y, 0)) - node3(y, 3) -
-                                   u * (node3(y, 4) - node3(y, 3))).norm());
-  }
+  const double smallest = smallest_along(x, turn, [](const VecX& y) { return edge_edge_distance(y, 0, 1, 3, 4); });
   CHECK(smallest == Approx(h * std::cos(angle)).epsilon(1e-3));
 }
 
@@ -576,17 +578,13 @@ TEST_CASE("penalty contact: a step within the ratio never closes a pair by more 
         for (int k = 0; k < 3; ++k) {
           const int c0 = t[k], c1 = t[(k + 1) % 3];
           if ((c0 < 9) == (a < 9)) continue;
-          const Vec3 xa = node3(y, a), xb = node3(y, b), xc = node3(y, c0), xd = node3(y, c1);
-          const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
-          d.push_back((xa + s * (xb - xa) - xc - u * (xd - xc)).norm());
+          d.push_back(edge_edge_distance(y, a, b, c0, c1));
         }
     for (int i = 0; i < m.points.rows(); ++i)
       for (size_t t = 0; t < m.triangles.size(); ++t) {
         const Tri& tri = m.triangles[t];
         if (m.leaflet[t] == (i < 9 ? 0 : 1)) continue;
-        const Vec3 p = node3(y, i), a = node3(y, tri[0]), b = node3(y, tri[1]), cc = node3(y, tri[2]);
-        const Vec3 w = closest_point_weights(p, a, b, cc);
-        d.push_back((p - (w[0] * a + w[1] * b + w[2] * cc)).norm());
+        d.push_back(node_face_distance(y, i, tri[0], tri[1], tri[2]));
       }
     return d;
   };

@@ -284,7 +284,6 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   return ratio;
 }
 
-
 void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps) const {
   out.clear();
   if (gaps) gaps->clear();

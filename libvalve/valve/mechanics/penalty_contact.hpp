@@ -27,9 +27,9 @@
 // measurements the gap keeps a tenth of the last one). The plane bound counts a triangle's
 // tilt at its farthest node as closing, so with it alone a face hinging or sliding past a
 // node a tenth of a millimetre away holds every step to that tenth; on the sample mitral
-// closure the limiting pair's distance along such steps often never fell. With both, the aortic valve FE closure takes 59 Newton
-// iterations against 121, the sample mitral closure 97 against 153 (medians over eleven
-// starts, docs/results/quasistatic-solver.md).
+// closure the limiting pair's distance along such steps often never fell. With both, the
+// aortic valve FE closure takes 59 Newton iterations against 121, the sample mitral closure
+// 97 against 153 (medians over eleven starts, docs/results/quasistatic-solver.md).
 //
 // Why not the seed's law by default: it acts on nodes in front of a triangle only, with no
 // reaction, and cancels only the pressure on the node. On the 3-leaflet aortic valve the
