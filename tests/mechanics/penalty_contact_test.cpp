@@ -357,12 +357,55 @@ TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the 
   CHECK(bounded > 50);
 }
 
+TEST_CASE("barrier contact: a candidate list kept while nodes move finds the contacts a fresh one finds", "[mechanics][penalty_contact]") {
+  // The list is built with node 3 1 mm over the lower face (beyond the reach ξ + ŝ = 0.35 mm);
+  // node 3 then comes down 0.45-0.85 mm, within the list's tolerance (1.5 mm: no rebuild).
+  // Where the pair is still beyond the reach its gap is recorded by a lower bound (the build's
+  // distance less the move), not measured; where it has come within, it must act as in a term
+  // built there. A bound that forgot the move (1 mm) would miss every pair that came within.
+  // Steps toward the face, scaled to the step bound, keep the path above ξ either way.
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.offset = 0.1;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int within = 0, bounded = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    PenaltyContactTerm kept(two_sheets(1.0), opt, std::vector<char>(18, 0));
+    VecX x = flatten(two_sheets(0.3).points);
+    node3(x, 3) = Vec3(0.3 + 0.3 * u(rng), 0.3 + 0.2 * u(rng), 1.0);
+    kept.update_couplings(x);
+    node3(x, 3) += Vec3(0.1 * u(rng), 0.1 * u(rng), -1.0).normalized() * (0.65 + 0.2 * u(rng));
+    kept.update_couplings(x);
+    PenaltyContactTerm fresh(two_sheets(1.0), opt, std::vector<char>(18, 0));
+    fresh.update_couplings(x);
+    if (node_face_distance(x, 3, 0, 1, 2) < 0.35) ++within;
+    CHECK(energy_of(kept, x) == Approx(energy_of(fresh, x)).margin(1e-12));
+    CHECK((forces(kept, x) - forces(fresh, x)).norm() <= 1e-12);
+
+    VecX dx = VecX::Zero(x.size());
+    for (int k = 0; k < 18; ++k) dx[k] = 0.05 * u(rng);
+    node3(dx, 3) += Vec3(0.2 * u(rng), 0.2 * u(rng), -1.25 + 0.25 * u(rng));  // toward the face
+    const double ratio = kept.step_ratio(x, dx);
+    if (ratio <= 1) continue;
+    ++bounded;
+    const auto node_to_face = [](const VecX& y) { return node_face_distance(y, 3, 0, 1, 2); };
+    CHECK(smallest_along(x, dx / ratio, node_to_face, 50) > opt.offset);
+  }
+  CHECK(within > 20);
+  CHECK(within < 80);
+  CHECK(bounded > 50);
+}
+
 TEST_CASE("barrier contact: a face hinging beside a node is measured along the step, not cut to the gap", "[mechanics][penalty_contact]") {
   // Node 3 hangs 0.1 mm over the lower face at barycentric weight 1/4 of its node 2. Raising
   // node 2 by a hinges the face about its edge 0-1: the face under the node rises by a/4, so
   // the gap is 0.1 − a/4 (less the tilt's small cosine). The supporting-plane bound alone
   // counts node 2's whole rise as closing: a / (0.8 · 0.1), 2.5 for a = 0.2, whose whole step
-  // keeps 0.05 mm; a = 0.6 reaches the face at t = 2/3, so the bound must stay above 1.5.
+  // keeps 0.05 mm. Followed on past the step, the gap falls to 0.2 of its start at a rise of
+  // 0.319 mm: the ratio lies between 0.2 / 0.319 = 0.627 and 1, well below 1 (BDF2 grows its
+  // next step by what the ratio leaves). a = 0.6 reaches the face at t = 2/3, so the bound
+  // must stay above 1.5.
   PenaltyContactOptions opt;
   opt.potential = ContactPotential::barrier;
   PenaltyContactTerm c(two_sheets(1.0), opt, std::vector<char>(18, 0));  // apart at rest
@@ -377,7 +420,9 @@ TEST_CASE("barrier contact: a face hinging beside a node is measured along the s
     hinge[3 * 2 + 2] = rise;
     const double ratio = c.step_ratio(x, hinge);
     if (rise < 0.4) {
-      CHECK(ratio <= 1);
+      CHECK(ratio >= 0.2 / 0.319);
+      CHECK(ratio <= 0.8);
+      CHECK(gap_along(hinge / ratio) > 0.2 * 0.1);
       CHECK(gap_along(hinge) == Approx((0.1 - rise / 4) / std::sqrt(1 + rise * rise / 4)).epsilon(1e-3));
     } else {
       CHECK(ratio > 1.5);

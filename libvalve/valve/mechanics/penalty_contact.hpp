@@ -182,11 +182,16 @@ class PenaltyContactTerm final : public ContactForceTerm {
   /// Central differences of pair_gradient, where the distance's closed-form Hessian does not hold.
   void pair_hessian_by_differences(bool edge, const PairVector& y, PairMatrix& H) const;
   /// A candidate pair's distance d and unit direction n from the second side (triangle, or
-  /// the other edge) to the first (node, or query edge); n = 0 when d vanishes.
+  /// the other edge) to the first (node, or query edge); n = 0 when d vanishes. A pair that
+  /// cannot be within reach is not measured: its `distance` is then a lower bound (its
+  /// distance when the candidate list was built, less its nodes' largest moves since).
   struct PairGap {
     double distance;
     Vec3 normal;
+    bool lower_bound = false;
   };
+  /// The gap of candidate pair k (face pairs, then edge pairs) measured at x.
+  PairGap measured_gap(size_t k, const VecX& x) const;
   /// Also records, where given, every candidate pair's gap (face pairs, then edge pairs).
   void active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps = nullptr) const;
   /// The active contacts at x: those found by the last update_couplings if x is where it
@@ -211,6 +216,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
                                      // interior_edges; empty without edge contact
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted
   std::vector<std::pair<int, int>> edge_pairs_;        // (query edge, edge) candidates
+  std::vector<double> built_distance_;                 // each candidate's distance at built_at_
   std::vector<std::pair<int, int>> coupled_;
   VecX built_at_;  // positions when the candidate list was built (empty: never)
   VecX contacts_x_;                 // where update_couplings last found the active contacts
