@@ -32,7 +32,7 @@ SparseMatrix bdf2_like(int n, double skew) {
 double relative_residual(const SparseMatrix& A, const VecX& x, const VecX& b) { return (A * x - b).norm() / b.norm(); }
 }  // namespace
 
-TEST_CASE("ldlt_bicgstab solves the whole non-symmetric system, the symmetric part alone does not", "[solver]") {
+TEST_CASE("BiCGStab on the symmetric part's LDLT or CHOLMOD Cholesky solves the whole non-symmetric system, the symmetric part alone does not", "[solver]") {
   const int n = 300;
   const SparseMatrix A = bdf2_like(n, 0.8);
   std::mt19937 rng(7);
@@ -44,31 +44,67 @@ TEST_CASE("ldlt_bicgstab solves the whole non-symmetric system, the symmetric pa
   REQUIRE(lu.info() == Eigen::Success);
   const VecX reference = lu.solve(b);
 
-  auto whole = make_linear_solver(LinearSolverType::ldlt_bicgstab, 1e-10, 200);
-  CHECK_FALSE(whole->needs_symmetric());
   VecX x;
-  REQUIRE(whole->factorize(A));
-  REQUIRE(whole->solve(b, x));
-  CHECK(relative_residual(A, x, b) < 1e-9);
-  CHECK((x - reference).norm() < 1e-8 * reference.norm());
-  CHECK(whole->stats().iterations <= 20);
+  for (auto type : {LinearSolverType::ldlt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
+    INFO(to_string(type));
+    auto whole = make_linear_solver(type, 1e-10, 200);
+    CHECK(whole->name() == to_string(type));
+    CHECK_FALSE(whole->needs_symmetric());
+    REQUIRE(whole->factorize(A));
+    REQUIRE(whole->solve(b, x));
+    CHECK(relative_residual(A, x, b) < 1e-9);
+    CHECK((x - reference).norm() < 1e-8 * reference.norm());
+    CHECK(whole->stats().iterations <= 20);
+  }
 
-  // What BDF2 solved before: the symmetric part only; its answer misses the whole system.
+  // The symmetric part alone: its answer misses the whole system.
   auto sym = make_linear_solver(LinearSolverType::ldlt);
   REQUIRE(sym->factorize(symmetric_part(A)));
   REQUIRE(sym->solve(b, x));
   CHECK(relative_residual(A, x, b) > 1e-2);
 }
 
-TEST_CASE("ldlt_bicgstab on a symmetric system needs no iteration beyond the factorization", "[solver]") {
+TEST_CASE("BiCGStab on the symmetric part's factorization needs no iteration on a symmetric system", "[solver]") {
   const SparseMatrix A = bdf2_like(200, 0.0);
   const VecX b = VecX::LinSpaced(200, -1, 1);
-  auto s = make_linear_solver(LinearSolverType::ldlt_bicgstab, 1e-10, 200);
+  for (auto type : {LinearSolverType::ldlt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
+    INFO(to_string(type));
+    auto s = make_linear_solver(type, 1e-10, 200);
+    VecX x;
+    REQUIRE(s->factorize(A));
+    REQUIRE(s->solve(b, x));
+    CHECK(relative_residual(A, x, b) < 1e-10);
+    CHECK(s->stats().iterations <= 1);
+  }
+}
+
+TEST_CASE("cholmod_bicgstab solves an indefinite system on the Cholesky of a definite one, and another on the same factorization", "[solver]") {
+  // A: the definite system P with a rank-2 indefinite change (two unknowns' diagonals turned
+  // negative), as an exact contact Hessian differs from its projection on a few pairs.
+  const int n = 300;
+  const SparseMatrix P = bdf2_like(n, 0.3);
+  SparseMatrix A = P;
+  A.coeffRef(40, 40) = -3.0;
+  A.coeffRef(200, 200) = -5.0;
+  const VecX b = VecX::LinSpaced(n, -1, 2);
+  auto reference = [&](const SparseMatrix& M) {
+    Eigen::SparseLU<SparseMatrix> lu(M);
+    REQUIRE(lu.info() == Eigen::Success);
+    return VecX(lu.solve(b));
+  };
+  auto cholesky = make_linear_solver(LinearSolverType::cholmod_llt);
+  CHECK_FALSE(cholesky->factorize(symmetric_part(A)));
+  CHECK_FALSE(cholesky->factorize_preconditioned(A, P));
+
+  auto s = make_linear_solver(LinearSolverType::cholmod_bicgstab, 1e-12, 200);
   VecX x;
-  REQUIRE(s->factorize(A));
+  REQUIRE(s->factorize_preconditioned(A, P));
   REQUIRE(s->solve(b, x));
-  CHECK(relative_residual(A, x, b) < 1e-10);
-  CHECK(s->stats().iterations <= 1);
+  CHECK((x - reference(A)).norm() < 1e-9 * reference(A).norm());
+  REQUIRE(s->set_operator(P));
+  REQUIRE(s->solve(b, x));
+  CHECK((x - reference(P)).norm() < 1e-9 * reference(P).norm());
+  CHECK(s->stats().factorizations == 1);
 }
 
 TEST_CASE("automatic linear solver: the whole system for small BDF2 systems, Cholesky for large", "[solver]") {

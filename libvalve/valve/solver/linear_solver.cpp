@@ -169,9 +169,9 @@ class IterativeSolver final : public LinearSolver {
 };
 
 // Eigen preconditioner interface over a factorization owned by the solver below.
+template <class Factorization>
 class SymmetricPartPreconditioner {
  public:
-  using Factorization = NodeBlockLdlt;
   template <class M>
   SymmetricPartPreconditioner& analyzePattern(const M&) { return *this; }
   template <class M>
@@ -184,39 +184,46 @@ class SymmetricPartPreconditioner {
   const Factorization* factorization = nullptr;
 };
 
-// The whole (non-symmetric) system by BiCGStab, preconditioned by the LDLᵀ factorization of
-// its symmetric part (see LinearSolverType::ldlt_bicgstab).
+// The whole (non-symmetric) system by BiCGStab, preconditioned by a factorization of its
+// symmetric part (see LinearSolverType::ldlt_bicgstab and cholmod_bicgstab).
+template <class Factorization>
 class SymmetricPartBiCGStab final : public LinearSolver {
  public:
-  SymmetricPartBiCGStab(double tol, int max_it) {
+  SymmetricPartBiCGStab(std::string name, double tol, int max_it) : name_(std::move(name)) {
+    silence(factorization_);
     it_.setTolerance(tol);
     it_.setMaxIterations(max_it);
-    it_.preconditioner().factorization = &ldlt_;
+    it_.preconditioner().factorization = &factorization_;
   }
   bool needs_symmetric() const override { return false; }
-  std::string name() const override { return "ldlt_bicgstab"; }
+  std::string name() const override { return name_; }
   void set_tolerance(double tol) override { it_.setTolerance(tol); }
-  bool factorize(const SparseMatrix& A) override {
+  bool factorize(const SparseMatrix& A) override { return factorize_preconditioned(A, A); }
+  bool factorize_preconditioned(const SparseMatrix& A, const SparseMatrix& preconditioner) override {
     const auto t0 = std::chrono::steady_clock::now();
-    pattern_.factorize(ldlt_, symmetric_nonzeros_.of(symmetric_.of(A)));
-    it_.compute(nonzeros_.of(A));
-    ok_ = book_factorization(ldlt_.info(), t0, stats_);
+    pattern_.factorize(factorization_, symmetric_nonzeros_.of(symmetric_.of(preconditioner)));
+    ok_ = book_factorization(factorization_.info(), t0, stats_);
+    return set_operator(A);
+  }
+  bool set_operator(const SparseMatrix& A) override {
+    if (ok_) it_.compute(nonzeros_.of(A));
     return ok_;
   }
   bool solve(const VecX& b, VecX& x) override {
     if (!ok_) return false;
     const auto t0 = std::chrono::steady_clock::now();
     // Start from the symmetric part's solution: the skew part is a small correction.
-    x = it_.solveWithGuess(b, ldlt_.solve(b));
+    x = it_.solveWithGuess(b, factorization_.solve(b));
     return book_krylov_solve(it_, x, t0, stats_);
   }
 
  private:
-  SymmetricPartPreconditioner::Factorization ldlt_;
+  std::string name_;
+  Factorization factorization_;
   SymmetricPart symmetric_;
   StoredZerosDropped symmetric_nonzeros_, nonzeros_;
   AnalysedPattern pattern_;
-  Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner> it_;
+  Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner<Factorization>> it_;
   bool ok_ = false;
 };
 
@@ -235,7 +242,7 @@ const LinearSolverType kAllTypes[] = {LinearSolverType::automatic, LinearSolverT
                                       LinearSolverType::cholmod_ldlt, LinearSolverType::ldlt,
                                       LinearSolverType::umfpack, LinearSolverType::klu,
                                       LinearSolverType::cg, LinearSolverType::bicgstab, LinearSolverType::lu,
-                                      LinearSolverType::ldlt_bicgstab};
+                                      LinearSolverType::ldlt_bicgstab, LinearSolverType::cholmod_bicgstab};
 }  // namespace
 
 const std::vector<std::string>& linear_solver_names() {
@@ -267,6 +274,7 @@ std::string to_string(LinearSolverType t) {
     case LinearSolverType::bicgstab: return "bicgstab";
     case LinearSolverType::lu: return "lu";
     case LinearSolverType::ldlt_bicgstab: return "ldlt_bicgstab";
+    case LinearSolverType::cholmod_bicgstab: return "cholmod_bicgstab";
   }
   return "?";
 }
@@ -299,7 +307,10 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
       return std::make_unique<IterativeSolver<Eigen::BiCGSTAB<SparseMatrix, Eigen::IncompleteLUT<double>>>>(
           "bicgstab", false, tol, max_it);
     case LinearSolverType::ldlt_bicgstab:
-      return std::make_unique<SymmetricPartBiCGStab>(tol, max_it);
+      return std::make_unique<SymmetricPartBiCGStab<NodeBlockLdlt>>("ldlt_bicgstab", tol, max_it);
+    case LinearSolverType::cholmod_bicgstab:
+      return std::make_unique<SymmetricPartBiCGStab<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_bicgstab", tol,
+                                                                                               max_it);
   }
   throw InputError("linear solver: unknown type");
 }

@@ -12,7 +12,9 @@
 
 namespace valve {
 
-enum class LinearSolverType { automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu, ldlt_bicgstab };
+enum class LinearSolverType {
+  automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu, ldlt_bicgstab, cholmod_bicgstab
+};
 
 /// The names parse_linear_solver() accepts, as scene files spell them.
 const std::vector<std::string>& linear_solver_names();
@@ -64,6 +66,18 @@ class LinearSolver {
   virtual bool factorize(const SparseMatrix& A) = 0;
   /// Solves A x = b with the last factorized A; false on failure.
   virtual bool solve(const VecX& b, VecX& x) = 0;
+  /// Krylov solvers on a factorization (ldlt_bicgstab, cholmod_bicgstab): factorizes the
+  /// symmetric part of `preconditioner` and solves with A; others return false. Newton then
+  /// takes an indefinite A (a Cholesky cannot factorize it) on a definite preconditioner.
+  virtual bool factorize_preconditioned(const SparseMatrix& A, const SparseMatrix& preconditioner) {
+    (void)A, (void)preconditioner;
+    return false;
+  }
+  /// After factorize_preconditioned: solves with A from now on, on the same factorization.
+  virtual bool set_operator(const SparseMatrix& A) {
+    (void)A;
+    return false;
+  }
   /// The iterative solvers' relative residual for the next solves; direct solvers ignore it.
   virtual void set_tolerance(double) {}
   const LinearSolverStats& stats() const { return stats_; }

@@ -20,14 +20,16 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
                                 double load_start) {
   const auto t_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
-  // Below kLargeSystemDofs the whole system (the pressure's stiffness is not symmetric) by
-  // BiCGStab on the LDLᵀ of its symmetric part, so that the last iterations are Newton's on
-  // f = 0 and converge quadratically (with the symmetric part alone, the frozen pressure made
-  // the tail linear: 1e-5 to 1e-6 took hundreds of iterations on the sample mitral closure);
-  // above, CHOLMOD's supernodal Cholesky of the symmetric part (linear_solver.hpp).
+  // The whole system (the pressure's stiffness is not symmetric) by BiCGStab on a
+  // factorization of its symmetric part, so that the last iterations are Newton's on f = 0 and
+  // converge quadratically (with the symmetric part alone, the frozen pressure made the tail
+  // linear: 1e-5 to 1e-6 took hundreds of iterations on the sample mitral closure): Eigen's
+  // LDLᵀ below kLargeSystemDofs, CHOLMOD's supernodal Cholesky above (linear_solver.hpp).
   LinearSolverType type = opt.linear_solver;
   if (type == LinearSolverType::automatic)
-    type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::ldlt_bicgstab : LinearSolverType::cholmod_llt;
+    type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::ldlt_bicgstab : LinearSolverType::cholmod_bicgstab;
+  // A Cholesky cannot factorize the exact contact Hessians where they are indefinite.
+  const bool exact_on_projected = type == LinearSolverType::cholmod_bicgstab;
   auto solver = make_linear_solver(type, opt.iterative_tolerance, 2000, sys.num_dofs(), SystemSymmetry::symmetrized);
   SolverSummary sum;
   sum.solver = "quasistatic";
@@ -50,6 +52,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
     trust = 0.05 * (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
   }
   SystemMatrix system_matrix;
+  SparseMatrix exact_matrix;
   VecX f, fe, dx, b, f_trial, x_before;
   double delta = opt.initial_proximal_step;
   ExactHessianSchedule exact_hessians;
@@ -68,6 +71,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       exact = exact_hessians.exact_at(delta);
       sys.set_jacobian_mode(exact ? JacobianMode::exact : JacobianMode::projected);
       if (!sys.evaluate(s, f, true, false)) return false;
+      bool exact_jacobian = exact;  // what sys.dfdx() holds
       ++sum.jacobian_evaluations;
       const double r = free_norm(f, cons);
       if (!(reference > 0)) reference = std::max(r, 1e-300);
@@ -106,11 +110,42 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
         b = delta * f;
         const SparseMatrix& A =
             system_matrix.assemble(sys.dfdx(), -delta, nullptr, 0.0, M, cons, solver->needs_symmetric(), b);
-        if (!solver->factorize(A) || !solver->solve(b, dx) || !dx.allFinite()) {
+        if (exact && exact_on_projected) {
+          // The exact matrix by BiCGStab on the Cholesky of the projected one; where its
+          // direction fails, the projected direction on the same factorization.
+          if (!exact_jacobian) {  // a line search failed after the last try: evaluate again
+            sys.set_jacobian_mode(JacobianMode::exact);
+            if (!sys.evaluate(s, f, true, false)) return false;
+            exact_jacobian = true;
+            continue;
+          }
+          exact_matrix = A;
+          sys.set_jacobian_mode(JacobianMode::projected);
+          if (!sys.evaluate(s, f, true, false)) return false;
+          exact_jacobian = false;
+          const SparseMatrix& P =
+              system_matrix.assemble(sys.dfdx(), -delta, nullptr, 0.0, M, cons, solver->needs_symmetric(), b);
+          if (!solver->factorize_preconditioned(exact_matrix, P)) {
+            delta *= 0.25;
+            continue;
+          }
+          ++sum.newton_iterations;
+          const bool exact_descends = solver->solve(b, dx) && dx.allFinite() && f.dot(dx) > 0;
+          if (!exact_descends) {
+            exact = false;
+            exact_hessians.failed_at(delta);
+            if (!solver->set_operator(P) || !solver->solve(b, dx) || !dx.allFinite()) {
+              delta *= 0.25;
+              continue;
+            }
+            ++sum.newton_iterations;
+          }
+        } else if (!solver->factorize(A) || !solver->solve(b, dx) || !dx.allFinite()) {
           if (!retry_projected()) delta *= 0.25;
           continue;
+        } else {
+          ++sum.newton_iterations;
         }
-        ++sum.newton_iterations;
         const double descent = f.dot(dx);  // −∇Φ·Δ
         if (!(descent > 0)) {              // H not positive definite: not a descent direction
           if (!retry_projected() && !retry_without_load_stiffness()) delta *= 0.25;
