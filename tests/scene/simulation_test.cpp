@@ -270,10 +270,10 @@ TEST_CASE("quasi-static: two sheets pressed together reach equilibrium with the 
   const int n = mesh.num_nodes() / 2;
   const size_t half = mesh.triangles.size() / 2;
   // Newton from the start, or from where a damped BDF2 run settles; the directions by BiCGStab
-  // on the LDLᵀ of the symmetric part (the default here), or on the Cholesky of the projected
-  // Jacobian's (the default above 6,000 unknowns: exact Hessians as the operator only).
+  // on Eigen's LLᵀ (auto) or CHOLMOD's Cholesky (the choice above 6,000 unknowns) of the
+  // projected Jacobian's symmetric part, or on Eigen's LDLᵀ.
   const std::string approach = GENERATE(as<std::string>{}, "newton", "dynamic");
-  const std::string linear_solver = GENERATE(as<std::string>{}, "auto", "cholmod_bicgstab");
+  const std::string linear_solver = GENERATE(as<std::string>{}, "auto", "cholmod_bicgstab", "ldlt_bicgstab");
   json j = {{"mesh", "unused.vtp"},
             {"model", "membrane_fe"},
             {"material", "aortic_leaflet"},

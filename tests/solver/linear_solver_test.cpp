@@ -32,7 +32,7 @@ SparseMatrix bdf2_like(int n, double skew) {
 double relative_residual(const SparseMatrix& A, const VecX& x, const VecX& b) { return (A * x - b).norm() / b.norm(); }
 }  // namespace
 
-TEST_CASE("BiCGStab on the symmetric part's LDLT or CHOLMOD Cholesky solves the whole non-symmetric system, the symmetric part alone does not", "[solver]") {
+TEST_CASE("BiCGStab on the symmetric part's LDLT, LLT or CHOLMOD Cholesky solves the whole non-symmetric system, the symmetric part alone does not", "[solver]") {
   const int n = 300;
   const SparseMatrix A = bdf2_like(n, 0.8);
   std::mt19937 rng(7);
@@ -45,7 +45,7 @@ TEST_CASE("BiCGStab on the symmetric part's LDLT or CHOLMOD Cholesky solves the 
   const VecX reference = lu.solve(b);
 
   VecX x;
-  for (auto type : {LinearSolverType::ldlt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
+  for (auto type : {LinearSolverType::ldlt_bicgstab, LinearSolverType::llt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
     INFO(to_string(type));
     auto whole = make_linear_solver(type, 1e-10, 200);
     CHECK(whole->name() == to_string(type));
@@ -67,7 +67,7 @@ TEST_CASE("BiCGStab on the symmetric part's LDLT or CHOLMOD Cholesky solves the 
 TEST_CASE("BiCGStab on the symmetric part's factorization needs no iteration on a symmetric system", "[solver]") {
   const SparseMatrix A = bdf2_like(200, 0.0);
   const VecX b = VecX::LinSpaced(200, -1, 1);
-  for (auto type : {LinearSolverType::ldlt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
+  for (auto type : {LinearSolverType::ldlt_bicgstab, LinearSolverType::llt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
     INFO(to_string(type));
     auto s = make_linear_solver(type, 1e-10, 200);
     VecX x;
@@ -78,7 +78,7 @@ TEST_CASE("BiCGStab on the symmetric part's factorization needs no iteration on 
   }
 }
 
-TEST_CASE("cholmod_bicgstab solves an indefinite system on the Cholesky of a definite one, and another on the same factorization", "[solver]") {
+TEST_CASE("BiCGStab on a Cholesky solves an indefinite system on a definite preconditioner, and another on the same factorization", "[solver]") {
   // A: the definite system P with a rank-2 indefinite change (two unknowns' diagonals turned
   // negative), as an exact contact Hessian differs from its projection on a few pairs.
   const int n = 300;
@@ -96,15 +96,19 @@ TEST_CASE("cholmod_bicgstab solves an indefinite system on the Cholesky of a def
   CHECK_FALSE(cholesky->factorize(symmetric_part(A)));
   CHECK_FALSE(cholesky->factorize_preconditioned(A, P));
 
-  auto s = make_linear_solver(LinearSolverType::cholmod_bicgstab, 1e-12, 200);
-  VecX x;
-  REQUIRE(s->factorize_preconditioned(A, P));
-  REQUIRE(s->solve(b, x));
-  CHECK((x - reference(A)).norm() < 1e-9 * reference(A).norm());
-  REQUIRE(s->set_operator(P));
-  REQUIRE(s->solve(b, x));
-  CHECK((x - reference(P)).norm() < 1e-9 * reference(P).norm());
-  CHECK(s->stats().factorizations == 1);
+  for (auto type : {LinearSolverType::llt_bicgstab, LinearSolverType::cholmod_bicgstab}) {
+    INFO(to_string(type));
+    auto s = make_linear_solver(type, 1e-12, 200);
+    CHECK_FALSE(s->factorize(A));  // its symmetric part is indefinite
+    VecX x;
+    REQUIRE(s->factorize_preconditioned(A, P));
+    REQUIRE(s->solve(b, x));
+    CHECK((x - reference(A)).norm() < 1e-9 * reference(A).norm());
+    REQUIRE(s->set_operator(P));
+    REQUIRE(s->solve(b, x));
+    CHECK((x - reference(P)).norm() < 1e-9 * reference(P).norm());
+    CHECK(s->stats().factorizations == 2);
+  }
 }
 
 TEST_CASE("automatic linear solver: the whole system for small BDF2 systems, Cholesky for large", "[solver]") {

@@ -38,6 +38,7 @@ void silence(Eigen::CholmodSimplicialLDLT<M, UpLo>& d) {
 }
 
 using NodeBlockLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, NodeBlockAmdOrdering<SparseMatrix::StorageIndex>>;
+using NodeBlockLlt = Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, NodeBlockAmdOrdering<SparseMatrix::StorageIndex>>;
 
 // The pattern a decomposition was last analysed for. Contact grows the Jacobian pattern
 // during a solve, so the symbolic analysis is redone only when the pattern changes.
@@ -242,7 +243,8 @@ const LinearSolverType kAllTypes[] = {LinearSolverType::automatic, LinearSolverT
                                       LinearSolverType::cholmod_ldlt, LinearSolverType::ldlt,
                                       LinearSolverType::umfpack, LinearSolverType::klu,
                                       LinearSolverType::cg, LinearSolverType::bicgstab, LinearSolverType::lu,
-                                      LinearSolverType::ldlt_bicgstab, LinearSolverType::cholmod_bicgstab};
+                                      LinearSolverType::ldlt_bicgstab, LinearSolverType::llt_bicgstab,
+                                      LinearSolverType::cholmod_bicgstab};
 }  // namespace
 
 const std::vector<std::string>& linear_solver_names() {
@@ -274,6 +276,7 @@ std::string to_string(LinearSolverType t) {
     case LinearSolverType::bicgstab: return "bicgstab";
     case LinearSolverType::lu: return "lu";
     case LinearSolverType::ldlt_bicgstab: return "ldlt_bicgstab";
+    case LinearSolverType::llt_bicgstab: return "llt_bicgstab";
     case LinearSolverType::cholmod_bicgstab: return "cholmod_bicgstab";
   }
   return "?";
@@ -308,6 +311,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
           "bicgstab", false, tol, max_it);
     case LinearSolverType::ldlt_bicgstab:
       return std::make_unique<SymmetricPartBiCGStab<NodeBlockLdlt>>("ldlt_bicgstab", tol, max_it);
+    case LinearSolverType::llt_bicgstab:
+      return std::make_unique<SymmetricPartBiCGStab<NodeBlockLlt>>("llt_bicgstab", tol, max_it);
     case LinearSolverType::cholmod_bicgstab:
       return std::make_unique<SymmetricPartBiCGStab<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_bicgstab", tol,
                                                                                                max_it);

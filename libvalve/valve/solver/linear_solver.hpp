@@ -13,7 +13,7 @@
 namespace valve {
 
 enum class LinearSolverType {
-  automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu, ldlt_bicgstab, cholmod_bicgstab
+  automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu, ldlt_bicgstab, llt_bicgstab, cholmod_bicgstab
 };
 
 /// The names parse_linear_solver() accepts, as scene files spell them.

@@ -20,16 +20,18 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
                                 double load_start) {
   const auto t_start = std::chrono::steady_clock::now();
   auto wall = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count(); };
-  // The whole system (the pressure's stiffness is not symmetric) by BiCGStab on a
-  // factorization of its symmetric part, so that the last iterations are Newton's on f = 0 and
-  // converge quadratically (with the symmetric part alone, the frozen pressure made the tail
-  // linear: 1e-5 to 1e-6 took hundreds of iterations on the sample mitral closure): Eigen's
-  // LDLᵀ below kLargeSystemDofs, CHOLMOD's supernodal Cholesky above (linear_solver.hpp).
+  // The whole system (the pressure's stiffness is not symmetric) by BiCGStab on a Cholesky of
+  // its symmetric part, so that the last iterations are Newton's on f = 0 and converge
+  // quadratically (with the symmetric part alone, the frozen pressure made the tail linear:
+  // 1e-5 to 1e-6 took hundreds of iterations on the sample mitral closure): Eigen's simplicial
+  // LLᵀ below kLargeSystemDofs, CHOLMOD's supernodal one above (linear_solver.hpp). A Cholesky
+  // refuses a symmetric part that is not positive definite, and δ then shrinks (see the header).
   LinearSolverType type = opt.linear_solver;
   if (type == LinearSolverType::automatic)
-    type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::ldlt_bicgstab : LinearSolverType::cholmod_bicgstab;
-  // A Cholesky cannot factorize the exact contact Hessians where they are indefinite.
-  const bool exact_on_projected = type == LinearSolverType::cholmod_bicgstab;
+    type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::llt_bicgstab : LinearSolverType::cholmod_bicgstab;
+  const bool exact_on_projected =
+      type == LinearSolverType::ldlt_bicgstab || type == LinearSolverType::llt_bicgstab ||
+      type == LinearSolverType::cholmod_bicgstab;
   auto solver = make_linear_solver(type, opt.iterative_tolerance, 2000, sys.num_dofs(), SystemSymmetry::symmetrized);
   SolverSummary sum;
   sum.solver = "quasistatic";
