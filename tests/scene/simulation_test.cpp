@@ -315,6 +315,25 @@ TEST_CASE("quasi-static: two sheets pressed together reach equilibrium with the 
   }
 }
 
+TEST_CASE("quasi-static: after a failed load increment the Cholesky hands over to the LDLT", "[scene][contact][quasistatic]") {
+  // Five Newton iterations cannot close the two sheets in one increment: it fails, the increment
+  // halves, and the rest of the solve factorizes with the LDLᵀ (which takes an indefinite
+  // symmetric part where the Cholesky would shrink the proximal step).
+  const TriMesh mesh = facing_sheets();
+  json j = {{"mesh", "unused.vtp"},
+            {"model", "membrane_fe"},
+            {"material", "aortic_leaflet"},
+            {"pressure", {{"value", "80 mmHg"}, {"direction", "along_normal"}}},
+            {"contact", {{"model", "barrier"}, {"offset", "0.05 mm"}}},
+            {"damping", {{"type", "critical"}}},
+            {"solver", {{"type", "quasistatic"}, {"quasistatic", {{"max_wall_seconds", 60}, {"max_iterations", 5}}}}}};
+  const SceneConfig sc = parse_scene(j, "barrier.json", ".");
+  auto sys = build_system(sc, mesh);
+  const auto res = simulate(sc, mesh, *sys);
+  INFO(res.summary.reason);
+  CHECK(res.summary.linear_solver == "llt_bicgstab, then ldlt_bicgstab");
+}
+
 TEST_CASE("quasi-static agrees with the static solver where there is no contact", "[scene][quasistatic]") {
   // The seed's single aortic leaflet at 80 mmHg (Fung law): both solve f(x) = 0.
   LeafletOptions o;

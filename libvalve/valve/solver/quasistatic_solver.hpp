@@ -69,7 +69,7 @@ namespace valve {
 ///   model's, (Φ_k(x_k) − Φ_k(x_k + αΔ)) / (α f·Δ (1 − α/2)): ×4 (×2 when a step bound
 ///   shortened the step) after a step taken at once with a gain above 3/4, ×0.5 below 1/4.
 /// `step` converges on every closure measured (docs/results/quasistatic-solver.md): the remeshed
-/// Texas TriValve in 957 iterations, where `gain` takes 326; `gain` stalled on two of ten aortic
+/// Texas TriValve in 292 directions, where `gain` takes 327; `gain` stalled on two of ten aortic
 /// starts with descending fibers in the slack root (with the supporting-plane collision bound
 /// alone).
 enum class ProximalStepRule { step, gain };
