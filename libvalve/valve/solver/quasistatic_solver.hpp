@@ -47,7 +47,7 @@
 //   can make it so), and δ then shrinks: the proximal term regularises there. That keeps
 //   Newton's path continuous in its start: over eleven starts 1e-6 mm apart the sample mitral
 //   closure spreads 0.013 mm (median, mean over nodes) and the aortic valve FE closure not at
-//   all, against 0.084 and 0.010 mm (0.179 at most) with an LDLᵀ, which factorises the
+//   all, against 0.165 and 0.010 mm (0.179 at most) with an LDLᵀ, which factorises the
 //   indefinite matrix and lets δ grow past it; the ×16 mitral closure takes 123 factorisations
 //   and 138 s against 407 and 196 s with the symmetric part's Cholesky alone as the direction.
 // Symbolic analyses are kept while the pattern holds. A direction that does not descend
@@ -103,15 +103,13 @@ class ExactHessianSchedule {
 ///   convergence stays superlinear, and the last directions are solved just well enough to
 ///   reach τ.
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
-///   37.8 s against 44.3 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
-///   82-138 iterations against 85-130 fixed (the Newton path, not the solves, sets these).
-///   With a ceiling of 0.1 (the supporting-plane collision bound alone) the mitral closures
-///   took 187-231.
+///   31.3 s against 32.2 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
+///   85-130 factorizations against 76-120 fixed (the Newton path, not the solves, sets these).
 ///   Why it is not the default: a direction solved to 1e-2 differs from the exact one by that
 ///   much, and where BiCGStab stops is a discrete decision, so starts 1e-6 mm apart follow
 ///   paths that part by 1e-2 and land on neighbouring equilibria: on the normal aortic valve
-///   31 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over nodes)
-///   the solver is held to, against 1 of 40 fixed.
+///   35 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over nodes)
+///   the solver is held to, against none fixed.
 enum class NewtonForcing { adaptive, fixed };
 
 /// The forcing sequence η_k of NewtonForcing::adaptive for one load increment.
