@@ -330,6 +330,20 @@ TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-differenc
   }
 }
 
+namespace {
+
+// Node 3's step dx toward face (0, 1, 2), cut to the contact's step bound, keeps its whole
+// straight path (sampled) beyond `offset`; false when the bound does not cut the step.
+bool cut_step_keeps_node_3_off_face(const PenaltyContactTerm& c, const VecX& x, const VecX& dx, double offset) {
+  const double ratio = c.step_ratio(x, dx);
+  if (ratio <= 1) return false;
+  const auto node_to_face = [](const VecX& y) { return node_face_distance(y, 3, 0, 1, 2); };
+  CHECK(smallest_along(x, dx / ratio, node_to_face, 50) > offset);
+  return true;
+}
+
+}  // namespace
+
 TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the offset", "[mechanics][penalty_contact]") {
   // Random steps of a node over a triangle, scaled to the step bound: the distance along the
   // whole straight path stays above ξ (sampled), and a step 1.5x the bound would get closer.
@@ -348,11 +362,7 @@ TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the 
     VecX dx = VecX::Zero(x.size());
     for (int k = 0; k < 18; ++k) dx[k] = 0.3 * u(rng);
     node3(dx, 3).z() = -std::abs(node3(dx, 3).z()) - 0.2;  // toward the face
-    const double ratio = c.step_ratio(x, dx);
-    if (ratio <= 1) continue;
-    ++bounded;
-    const auto node_to_face = [](const VecX& y) { return node_face_distance(y, 3, 0, 1, 2); };
-    CHECK(smallest_along(x, dx / ratio, node_to_face, 50) > opt.offset);
+    bounded += cut_step_keeps_node_3_off_face(c, x, dx, opt.offset);
   }
   CHECK(bounded > 50);
 }
@@ -386,11 +396,7 @@ TEST_CASE("barrier contact: a candidate list kept while nodes move finds the con
     VecX dx = VecX::Zero(x.size());
     for (int k = 0; k < 18; ++k) dx[k] = 0.05 * u(rng);
     node3(dx, 3) += Vec3(0.2 * u(rng), 0.2 * u(rng), -1.25 + 0.25 * u(rng));  // toward the face
-    const double ratio = kept.step_ratio(x, dx);
-    if (ratio <= 1) continue;
-    ++bounded;
-    const auto node_to_face = [](const VecX& y) { return node_face_distance(y, 3, 0, 1, 2); };
-    CHECK(smallest_along(x, dx / ratio, node_to_face, 50) > opt.offset);
+    bounded += cut_step_keeps_node_3_off_face(kept, x, dx, opt.offset);
   }
   CHECK(within > 20);
   CHECK(within < 80);

@@ -265,6 +265,22 @@ TEST_CASE("two sheets pressed together come to rest at the contact separation wi
   }
 }
 
+namespace {
+
+// facing_sheets() pressed together by 80 mmHg, FE, the contact barrier kept 0.05 mm apart, the
+// quasi-static solver with `quasistatic` as its options.
+json two_sheets_barrier_scene(const json& quasistatic) {
+  return {{"mesh", "unused.vtp"},
+          {"model", "membrane_fe"},
+          {"material", "aortic_leaflet"},
+          {"pressure", {{"value", "80 mmHg"}, {"direction", "along_normal"}}},
+          {"contact", {{"model", "barrier"}, {"offset", "0.05 mm"}}},
+          {"damping", {{"type", "critical"}}},
+          {"solver", {{"type", "quasistatic"}, {"quasistatic", quasistatic}}}};
+}
+
+}  // namespace
+
 TEST_CASE("quasi-static: two sheets pressed together reach equilibrium with the barrier, never crossing", "[scene][contact][quasistatic]") {
   const TriMesh mesh = facing_sheets();
   const int n = mesh.num_nodes() / 2;
@@ -274,15 +290,8 @@ TEST_CASE("quasi-static: two sheets pressed together reach equilibrium with the 
   // projected Jacobian's symmetric part, or on Eigen's LDLᵀ.
   const std::string approach = GENERATE(as<std::string>{}, "newton", "dynamic");
   const std::string linear_solver = GENERATE(as<std::string>{}, "auto", "cholmod_bicgstab", "ldlt_bicgstab");
-  json j = {{"mesh", "unused.vtp"},
-            {"model", "membrane_fe"},
-            {"material", "aortic_leaflet"},
-            {"pressure", {{"value", "80 mmHg"}, {"direction", "along_normal"}}},
-            {"contact", {{"model", "barrier"}, {"offset", "0.05 mm"}}},
-            {"damping", {{"type", "critical"}}},
-            {"solver",
-             {{"type", "quasistatic"},
-              {"quasistatic", {{"max_wall_seconds", 60}, {"approach", approach}, {"linear_solver", linear_solver}}}}}};
+  const json j =
+      two_sheets_barrier_scene({{"max_wall_seconds", 60}, {"approach", approach}, {"linear_solver", linear_solver}});
   const SceneConfig sc = parse_scene(j, "barrier.json", ".");
   auto sys = build_system(sc, mesh);
   const auto res = simulate(sc, mesh, *sys);
@@ -320,13 +329,7 @@ TEST_CASE("quasi-static: after a failed load increment the Cholesky hands over t
   // halves, and the rest of the solve factorizes with the LDLᵀ (which takes an indefinite
   // symmetric part where the Cholesky would shrink the proximal step).
   const TriMesh mesh = facing_sheets();
-  json j = {{"mesh", "unused.vtp"},
-            {"model", "membrane_fe"},
-            {"material", "aortic_leaflet"},
-            {"pressure", {{"value", "80 mmHg"}, {"direction", "along_normal"}}},
-            {"contact", {{"model", "barrier"}, {"offset", "0.05 mm"}}},
-            {"damping", {{"type", "critical"}}},
-            {"solver", {{"type", "quasistatic"}, {"quasistatic", {{"max_wall_seconds", 60}, {"max_iterations", 5}}}}}};
+  const json j = two_sheets_barrier_scene({{"max_wall_seconds", 60}, {"max_iterations", 5}});
   const SceneConfig sc = parse_scene(j, "barrier.json", ".");
   auto sys = build_system(sc, mesh);
   const auto res = simulate(sc, mesh, *sys);

@@ -89,7 +89,6 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
 
   face_pairs_.clear();
   built_distance_.clear();
-  std::vector<double> edge_distances;
   for (const auto& [i, t] : broad_phase_pairs(x, tris, detection_, opt_.broad_phase, query_)) {
     const Tri& tri = tris[t];
     if (topology_.excluded(i, t) || all_constrained({i, tri[0], tri[1], tri[2]})) continue;
@@ -109,11 +108,9 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
       const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
       const double distance = (xa + s * (xb - xa) - xc - u * (xd - xc)).norm();
       if (distance > detection_) continue;
-      edge_pairs_.emplace_back(be, e);
-      edge_distances.push_back(distance);
+      edge_pairs_.emplace_back(be, e), built_distance_.push_back(distance);  // after every face pair's
     }
   }
-  built_distance_.insert(built_distance_.end(), edge_distances.begin(), edge_distances.end());
 
   ++stats_.candidate_updates;
   stats_.candidate_pairs = static_cast<long>(face_pairs_.size() + edge_pairs_.size());
@@ -272,9 +269,9 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   auto check = [&](std::initializer_list<int> side_a, std::initializer_list<int> side_b) {
     // A pair recorded by a lower bound of its gap that leaves room enough has more; one that
     // does not is measured where its gap was recorded (contacts_x_).
-    PairGap g = pair_gaps_[k++];
-    if (2 * largest_step <= ratio * 0.8 * room_of(g)) return;
-    if (g.lower_bound) g = measured_gap(k - 1, contacts_x_);
+    const PairGap& recorded = pair_gaps_[k++];
+    if (2 * largest_step <= ratio * 0.8 * room_of(recorded)) return;
+    const PairGap g = recorded.lower_bound ? measured_gap(k - 1, contacts_x_) : recorded;
     const double room = room_of(g);
     if (2 * largest_step <= ratio * 0.8 * room) return;
     double closing = 0;
@@ -295,6 +292,8 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
       for (int node : side_b) y.segment<3>(3 * j) = node3(x, node), p.segment<3>(3 * j) = node3(dx, node), ++j;
       const double t_end = 1 / std::max(ratio, kSmallestMeasuredRatio);
       const double t = additive_ccd_fraction(side_a.size() == 2, y, p, opt_.offset, 0.2, t_end, 1.0);
+      // A pair cleared to t_end rates 1 / t_end, written as what t_end is the inverse of:
+      // 1 / (1 / r) need not round back to r, and the quasi-static solver cuts steps by r.
       pair_ratio = std::min(pair_ratio, t >= t_end ? std::max(ratio, kSmallestMeasuredRatio) : 1 / std::max(t, 1e-300));
     }
     ratio = std::max(ratio, pair_ratio);

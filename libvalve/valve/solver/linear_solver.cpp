@@ -200,6 +200,7 @@ class SymmetricPartBiCGStab final : public LinearSolver {
   std::string name() const override { return name_; }
   void set_tolerance(double tol) override { it_.setTolerance(tol); }
   bool factorize(const SparseMatrix& A) override { return factorize_preconditioned(A, A); }
+  bool takes_preconditioner() const override { return true; }
   bool factorize_preconditioned(const SparseMatrix& A, const SparseMatrix& preconditioner) override {
     const auto t0 = std::chrono::steady_clock::now();
     pattern_.factorize(factorization_, symmetric_nonzeros_.of(symmetric_.of(preconditioner)));

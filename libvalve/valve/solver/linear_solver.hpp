@@ -73,6 +73,8 @@ class LinearSolver {
     (void)A, (void)preconditioner;
     return false;
   }
+  /// Whether factorize_preconditioned is supported.
+  virtual bool takes_preconditioner() const { return false; }
   /// After factorize_preconditioned: solves with A from now on, on the same factorization.
   virtual bool set_operator(const SparseMatrix& A) {
     (void)A;

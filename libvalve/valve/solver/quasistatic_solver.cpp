@@ -29,9 +29,6 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   LinearSolverType type = opt.linear_solver;
   if (type == LinearSolverType::automatic)
     type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::llt_bicgstab : LinearSolverType::cholmod_bicgstab;
-  const bool exact_on_projected =
-      type == LinearSolverType::ldlt_bicgstab || type == LinearSolverType::llt_bicgstab ||
-      type == LinearSolverType::cholmod_bicgstab;
   auto solver = make_linear_solver(type, opt.iterative_tolerance, 2000, sys.num_dofs(), SystemSymmetry::symmetrized);
   SolverSummary sum;
   sum.solver = "quasistatic";
@@ -112,7 +109,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
         b = delta * f;
         const SparseMatrix& A =
             system_matrix.assemble(sys.dfdx(), -delta, nullptr, 0.0, M, cons, solver->needs_symmetric(), b);
-        if (exact && exact_on_projected) {
+        if (exact && solver->takes_preconditioner()) {
           // The exact matrix by BiCGStab on the Cholesky of the projected one; where its
           // direction fails, the projected direction on the same factorization.
           if (!exact_jacobian) {  // a line search failed after the last try: evaluate again
@@ -214,8 +211,8 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   lc.min_increment = opt.min_increment;
   lc.max_wall_seconds = opt.max_wall_seconds;
   lc.fast_iterations = 10;
-  // After a failed increment the regularisation starts afresh, and a Cholesky hands over to the
-  // LDLᵀ: where the symmetric part stays indefinite the Cholesky refuses it until δ is too small
+  // After a failed increment the regularisation starts afresh, and Eigen's Cholesky (below
+  // 6,000 unknowns; above, an LDLᵀ is too slow to take over) hands over to its LDLᵀ: where the symmetric part stays indefinite the Cholesky refuses it until δ is too small
   // to move (one slack-root closure of the normal-valve study's 170 quasi-static ones stalled so
   // at load factor 0.66; from its start the LDLᵀ closes it in 506 directions; 10 of the 170
   // fail an increment and hand over).
