@@ -53,15 +53,21 @@ void check_edges_pushed_apart(const VecX& f, std::initializer_list<int> upper, s
   for (int i : untouched) CHECK(node3(f, i).norm() == 0);
 }
 
+// y with every node turned by one generic rotation (no closest feature along an axis).
+VecX turned_generically(VecX y) {
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
+  for (int i = 0; i < y.size() / 3; ++i) node3(y, i) = R * node3(y, i);
+  return y;
+}
+
 // f = −dE/dx in generic positions of two_sheets' node 3 (over the face, an edge, a vertex),
 // with node 1 lifted by `lift` and everything turned: central differences of the energy.
 void check_force_is_minus_energy_gradient(PenaltyContactTerm& c, const VecX& x, double lift, double margin) {
-  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
   for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, -0.1, 0.1), Vec3(-0.08, -0.1, 0.1)}) {
     VecX y = x;
     node3(y, 3) = p;
     y[3 * 1 + 2] = lift;
-    for (int i = 0; i < 6; ++i) node3(y, i) = R * node3(y, i);
+    y = turned_generically(y);
     c.update_couplings(y);
     const VecX fy = forces(c, y);
     REQUIRE(fy.norm() > 0);
@@ -290,16 +296,40 @@ TEST_CASE("barrier contact: two leaflets close at rest but apart where the mesh 
   CHECK(forces(rest_only, near).norm() == 0);
 }
 
-TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-difference one on every closest feature", "[mechanics][penalty_contact][fd]") {
+namespace {
+
+// The barrier of the pair-Hessian tests: ξ = 0.05, ŝ = 0.25 mm, κ = 0.1 N/mm.
+PenaltyContactOptions pair_hessian_barrier() {
   PenaltyContactOptions opt;
   opt.potential = ContactPotential::barrier;
   opt.offset = 0.05;
   opt.separation = 0.25;
   opt.stiffness = 0.1;
+  return opt;
+}
+
+// two_sheets(1)'s node 3 moved to p, the lower face tilted by lifting node 1, all turned.
+VecX sheets_with_node_3_at(const Vec3& p) {
+  VecX y = flatten(two_sheets(1.0).points);
+  node3(y, 3) = p;
+  y[3 * 1 + 2] = 0.02;
+  return turned_generically(y);
+}
+
+// crossing_free_edges(1)'s upper edge skewed and brought 0.12 mm from the lower one, shifted
+// along x by `shift`, all turned.
+VecX free_edges_skewed(double shift) {
+  VecX y = flatten(crossing_free_edges(1.0).points);
+  for (int i : {3, 4, 5}) node3(y, i) += Vec3(shift, 0.2 * (i - 3), -0.88);
+  y[3 * 0 + 1] = 0.05;
+  return turned_generically(y);
+}
+
+}  // namespace
+
+TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-difference one on every closest feature", "[mechanics][penalty_contact][fd]") {
   const VecX v = VecX::Zero(18);
-  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, -0.5).normalized()).toRotationMatrix();
-  auto check_exact_jacobian = [&](PenaltyContactTerm& c, VecX y) {
-    for (int i = 0; i < 6; ++i) node3(y, i) = R * node3(y, i);
+  auto check_exact_jacobian = [&](PenaltyContactTerm& c, const VecX& y) {
     c.set_jacobian_mode(JacobianMode::exact);
     c.update_couplings(y);
     const auto exact = analytic_dfdx(c, 6, y, v, 1.0);
@@ -307,27 +337,54 @@ TEST_CASE("barrier contact: the closed-form pair Hessian is the finite-differenc
     const auto num = numeric_dfdx(c, y, v, 1.0, 1e-7);
     CHECK(relative_difference(exact, num) < 1e-5);
   };
-  // Node 3 over two_sheets' lower face (interior), beyond its edge 1-2 (closest point on the
-  // edge) and beyond its vertex 0, with the face tilted by lifting node 1.
-  PenaltyContactTerm sheets(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  // Node 3 over the lower face (interior), beyond its edge 1-2 (closest point on the edge) and
+  // beyond its vertex 0.
+  PenaltyContactTerm sheets(two_sheets(1.0), pair_hessian_barrier(), std::vector<char>(18, 0));
   for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, 0.95, 0.1), Vec3(-0.08, -0.1, 0.1)}) {
     INFO("node 3 at " << p.transpose());
-    VecX y = flatten(two_sheets(1.0).points);
-    node3(y, 3) = p;
-    y[3 * 1 + 2] = 0.02;
-    check_exact_jacobian(sheets, y);
+    check_exact_jacobian(sheets, sheets_with_node_3_at(p));
   }
-  // Two free edges 1 mm apart at rest, skewed and brought 0.12 mm apart: closest points inside
-  // both edges, then beyond node 1.
-  const TriMesh m = crossing_free_edges(1.0);
-  PenaltyContactTerm edges(m, opt, std::vector<char>(18, 0));
+  // Two free edges: closest points inside both edges, then beyond node 1.
+  PenaltyContactTerm edges(crossing_free_edges(1.0), pair_hessian_barrier(), std::vector<char>(18, 0));
   for (double shift : {0.3, 1.1}) {
     INFO("upper edge shifted along x by " << shift);
-    VecX y = flatten(m.points);
-    for (int i : {3, 4, 5}) node3(y, i) += Vec3(shift, 0.2 * (i - 3), -0.88);
-    y[3 * 0 + 1] = 0.05;
-    check_exact_jacobian(edges, y);
+    check_exact_jacobian(edges, free_edges_skewed(shift));
   }
+}
+
+TEST_CASE("barrier contact: the projected pair Hessian is the exact one's positive semi-definite part", "[mechanics][penalty_contact]") {
+  // One active pair, so the whole Jacobian is that pair's: its projection, computed here by a
+  // dense eigendecomposition of the whole 18 × 18 matrix, is what the term's projected mode
+  // (an eigenproblem in the ≤ 5-dimensional range of the pair's Hessian) must give.
+  const VecX v = VecX::Zero(18);
+  auto check_projection = [&](PenaltyContactTerm& c, const VecX& y) {
+    c.set_jacobian_mode(JacobianMode::exact);
+    c.update_couplings(y);
+    const Eigen::MatrixXd hessian = -analytic_dfdx(c, 6, y, v, 1.0);
+    REQUIRE(c.statistics().active_pairs == 1);
+    c.set_jacobian_mode(JacobianMode::projected);
+    c.update_couplings(y);
+    const Eigen::MatrixXd projected = -analytic_dfdx(c, 6, y, v, 1.0);
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(hessian);
+    REQUIRE(eig.eigenvalues().minCoeff() < -1e-3 * eig.eigenvalues().maxCoeff());  // something to clamp
+    const Eigen::MatrixXd expected =
+        eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+    CHECK((projected - expected).norm() < 1e-10 * expected.norm());
+  };
+  // Node 3 over the lower face and beyond its edge 1-2 (edge pairs off: near the rim node 3's
+  // edges near that edge too). Not beyond a vertex: that vertex is as close to node 3's
+  // triangle, a second pair.
+  PenaltyContactOptions faces_only = pair_hessian_barrier();
+  faces_only.edge_contact = false;
+  PenaltyContactTerm sheets(two_sheets(1.0), faces_only, std::vector<char>(18, 0));
+  for (const Vec3& p : {Vec3(0.4, 0.7, 0.12), Vec3(1.2, 0.95, 0.1)}) {
+    INFO("node 3 at " << p.transpose());
+    check_projection(sheets, sheets_with_node_3_at(p));
+  }
+  // Two edges, closest points inside both (beyond an end node, that node nears the other
+  // edge's triangle: more pairs).
+  PenaltyContactTerm edges(crossing_free_edges(1.0), pair_hessian_barrier(), std::vector<char>(18, 0));
+  check_projection(edges, free_edges_skewed(0.3));
 }
 
 namespace {

@@ -11,9 +11,10 @@
 //     b'(s) = −2 (s − ŝ) ln(s/ŝ) − (s − ŝ)²/s,  b''(s) = −2 ln(s/ŝ) − 4 (s − ŝ)/s + (s − ŝ)²/s²,
 // so the force −κ b'(s) grows without bound as s → 0: no pair ever reaches d = ξ. The
 // Jacobian is the pair's whole Hessian κ (b''(s) ∇d ∇dᵀ + b'(s) ∇²d), projected to positive
-// semi-definite (its 12 × 12 eigenvalues clamped at 0), as IPC does: the Gauss–Newton part
-// alone left the quasi-static solver converging linearly where pressed pairs slide (1,221
-// iterations on the sample mitral closure); near equilibrium the quasi-static solver asks for
+// semi-definite (its eigenvalues clamped at 0, found within the at most 5-dimensional span
+// that holds its range), as IPC does: the Gauss–Newton part alone left the quasi-static solver
+// converging linearly where pressed pairs slide (1,221 iterations on the sample mitral
+// closure); near equilibrium the quasi-static solver asks for
 // the exact Hessian instead (set_jacobian_mode). Its gradient is exact (the envelope theorem, as
 // below); ∇²d is in closed form for each closest feature (face, edge, vertex), and from
 // central differences of the gradient (step 1e-6 mm) where that does not hold (d ≈ 0,
