@@ -30,7 +30,8 @@
 // node a tenth of a millimetre away holds every step to that tenth; on the sample mitral
 // closure the limiting pair's distance along such steps often never fell. With both, the
 // aortic valve FE closure takes 59 Newton iterations against 121, the sample mitral closure
-// 97 against 153 (medians over eleven starts, docs/results/quasistatic-solver.md).
+// 97 against 153 (medians over eleven starts, measured with directions factorised by an LDLᵀ;
+// docs/methods/contact.md).
 //
 // Why not the seed's law by default: it acts on nodes in front of a triangle only, with no
 // reaction, and cancels only the pressure on the node. On the 3-leaflet aortic valve the

@@ -213,10 +213,10 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   lc.fast_iterations = 10;
   // After a failed increment the regularisation starts afresh, and Eigen's Cholesky (below
   // 6,000 unknowns; above, an LDLᵀ is too slow to take over) hands over to its LDLᵀ: where the
-  // symmetric part stays indefinite the Cholesky refuses it until δ is too small to move (one
-  // slack-root closure of the normal-valve study's 170 quasi-static ones stalled so at load
-  // factor 0.66; from its start the LDLᵀ closes it in 506 directions; 10 of the 170 fail an
-  // increment and hand over).
+  // symmetric part stays indefinite the Cholesky refuses it until δ is too small to move
+  // (measured with the Cholesky alone: a slack-root closure of the normal-valve study stalls so
+  // at load factor 0.66, which the LDLᵀ closes from its start in 506 directions); 8 of the
+  // study's 170 quasi-static closures fail an increment and hand over.
   LinearSolverStats earlier;
   auto after_failed_increment = [&] {
     delta = opt.initial_proximal_step;

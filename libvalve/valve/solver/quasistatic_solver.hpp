@@ -46,10 +46,9 @@
 // * A Cholesky refuses a symmetric part that is not positive definite (the pressure's stiffness
 //   can make it so), and δ then shrinks: the proximal term regularises there. That keeps
 //   Newton's path continuous in its start: over eleven starts 1e-6 mm apart the sample mitral
-//   closure spreads 0.013 mm (median, mean over nodes) and the aortic valve FE closure not at
-//   all, against 0.165 and 0.010 mm (0.179 at most) with an LDLᵀ, which factorises the
-//   indefinite matrix and lets δ grow past it; the ×16 mitral closure takes 123 factorisations
-//   and 138 s against 407 and 196 s with the symmetric part's Cholesky alone as the direction.
+//   closure spreads 0.013 mm (median, mean over nodes), against 0.18 mm with an LDLᵀ, which
+//   factorises the indefinite matrix and lets δ grow past it; the ×16 mitral closure takes 128
+//   factorisations, against 407 with the symmetric part's Cholesky alone as the direction.
 // Symbolic analyses are kept while the pattern holds. A direction that does not descend
 // (∇Φ·Δ >= 0) counts as a failed factorisation.
 // Ends when |f_free| <= relative_residual_tolerance · |f_ext,free|.
@@ -69,7 +68,7 @@ namespace valve {
 ///   model's, (Φ_k(x_k) − Φ_k(x_k + αΔ)) / (α f·Δ (1 − α/2)): ×4 (×2 when a step bound
 ///   shortened the step) after a step taken at once with a gain above 3/4, ×0.5 below 1/4.
 /// `step` converges on every closure measured (docs/results/quasistatic-solver.md): the remeshed
-/// Texas TriValve in 292 directions, where `gain` takes 327; `gain` stalled on two of ten aortic
+/// Texas TriValve in 299 directions, as `gain` does; `gain` stalled on two of ten aortic
 /// starts with descending fibers in the slack root (with the supporting-plane collision bound
 /// alone).
 enum class ProximalStepRule { step, gain };
@@ -103,13 +102,13 @@ class ExactHessianSchedule {
 ///   convergence stays superlinear, and the last directions are solved just well enough to
 ///   reach τ.
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
-///   31.3 s against 32.2 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
-///   85-130 factorizations against 76-120 fixed (the Newton path, not the solves, sets these).
+///   26.6 s against 36.0 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
+///   72-130 factorizations against 76-139 fixed (the Newton path, not the solves, sets these).
 ///   Why it is not the default: a direction solved to 1e-2 differs from the exact one by that
 ///   much, and where BiCGStab stops is a discrete decision, so starts 1e-6 mm apart follow
-///   paths that part by 1e-2 and land on neighbouring equilibria: on the normal aortic valve
-///   35 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over nodes)
-///   the solver is held to, against none fixed.
+///   paths that part by 1e-2, stall and land on neighbouring equilibria: on the normal aortic
+///   valve 26 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over
+///   nodes) the solver is held to, against none fixed, most after a failed first increment.
 enum class NewtonForcing { adaptive, fixed };
 
 /// The forcing sequence η_k of NewtonForcing::adaptive for one load increment.
