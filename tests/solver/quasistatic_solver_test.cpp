@@ -50,12 +50,22 @@ TEST_CASE("the adaptive forcing term solves no tighter than the residual target 
 TEST_CASE("the adaptive forcing term stays within its ceiling and its floor", "[solver][quasistatic]") {
   ForcingTerm forcing(1e-3, 1e-12);
   CHECK(forcing.next(1.0) == Approx(0.01));
-  // A residual that rises keeps the ceiling.
-  CHECK(forcing.next(2.0) == Approx(0.01));
   // r halves: 0.9 · 0.25 = 0.225, capped at 0.01.
-  CHECK(forcing.next(1.0) == Approx(0.01));
+  CHECK(forcing.next(0.5) == Approx(0.01));
   // r falls 1e4-fold: 0.9e-8, raised to the floor 1e-3.
-  CHECK(forcing.next(1e-4) == Approx(1e-3));
+  CHECK(forcing.next(5e-5) == Approx(1e-3));
+}
+
+TEST_CASE("the adaptive forcing term solves the direction after a step without progress as fixed does", "[solver][quasistatic]") {
+  // Choice 2 alone would give 0.9 · 1² (the ceiling, 0.01) to a residual that stays put, and
+  // 0.5 τ / r would allow 5e-4 here; the floor is what `fixed` solves to.
+  ForcingTerm forcing(1e-6, 1e-6);
+  forcing.next(0.1);
+  CHECK(forcing.next(1e-3) == Approx(5e-4));
+  CHECK(forcing.next(1e-3) == Approx(1e-6));  // no progress
+  CHECK(forcing.next(2e-3) == Approx(1e-6));  // the residual rose
+  // Progress again: back to choice 2 (r halves: 0.9 · 0.25, capped at the ceiling).
+  CHECK(forcing.next(1e-3) == Approx(0.01));
 }
 
 TEST_CASE("the adaptive forcing term is never tighter than a fixed tolerance above its ceiling", "[solver][quasistatic]") {

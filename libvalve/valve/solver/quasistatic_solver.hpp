@@ -101,14 +101,16 @@ class ExactHessianSchedule {
 ///   1e-6 is wasted work; while the residual falls fast η_k falls with it, so Newton's
 ///   convergence stays superlinear, and the last directions are solved just well enough to
 ///   reach τ.
+///   After a step that did not lower the residual the next direction is solved to the floor
+///   (ForcingTerm::next).
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
-///   26.6 s against 36.0 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
-///   72-130 factorizations against 76-139 fixed (the Newton path, not the solves, sets these).
+///   27.9 s against 31.1 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
+///   64-190 factorizations against 76-139 fixed (the Newton path, not the solves, sets these).
 ///   Why it is not the default: a direction solved to 1e-2 differs from the exact one by that
 ///   much, and where BiCGStab stops is a discrete decision, so starts 1e-6 mm apart follow
-///   paths that part by 1e-2, stall and land on neighbouring equilibria: on the normal aortic
-///   valve 26 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over
-///   nodes) the solver is held to, against none fixed, most after a failed first increment.
+///   paths that part by 1e-2 and land on neighbouring equilibria: on the normal aortic valve
+///   9 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over nodes) the
+///   solver is held to, against none fixed.
 enum class NewtonForcing { adaptive, fixed };
 
 /// The forcing sequence η_k of NewtonForcing::adaptive for one load increment.
@@ -120,6 +122,13 @@ class ForcingTerm {
     double eta = kCeiling;
     if (previous_r_ > 0) {
       const double ratio = r / previous_r_;
+      // A step that did not lower the residual: the next direction is solved as `fixed` solves
+      // it. Choice 2 would loosen it to the ceiling, and a direction 1e-2 off can push into a
+      // contact whose collision bound then cuts every step to nothing.
+      if (!(ratio < 1)) {
+        previous_r_ = r;
+        return floor_;
+      }
       eta = 0.9 * ratio * ratio;
     }
     eta = std::max(eta, 0.5 * target_ / std::max(r, 1e-300));
