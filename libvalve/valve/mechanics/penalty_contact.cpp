@@ -60,7 +60,7 @@ bool PenaltyContactTerm::update_couplings(const VecX& x) {
   if (stale) rebuild_candidates(x);
   // A second Jacobian at the same state (the projected one beside the exact) finds what the
   // first found.
-  else if (contacts_x_.size() == x.size() && contacts_x_ == x)
+  else if (contacts_found_at(x))
     return false;
   // The pattern needs the pairs active here, where the Jacobian is evaluated; the step
   // limits need every candidate's distance here, where the solver's step starts.
@@ -75,7 +75,7 @@ bool PenaltyContactTerm::update_couplings(const VecX& x) {
 
 const std::vector<PenaltyContactTerm::Contact>& PenaltyContactTerm::contacts_at(const VecX& x,
                                                                                  std::vector<Contact>& scratch) const {
-  if (contacts_x_.size() == x.size() && contacts_x_ == x) return contacts_;
+  if (contacts_found_at(x)) return contacts_;
   active_contacts(x, scratch);
   return scratch;
 }
@@ -154,14 +154,15 @@ PairGeometry pair_geometry(bool edge, const Vec3& p0, const Vec3& p1, const Vec3
 // G_i = [e_ij D + c_j T_i]_j (12),
 //     ∇(½d²) = Cᵀ D,   ∇²(½d²) = CᵀC − G (TᵀT)⁻¹ Gᵀ   (the Schur complement),
 //     ∇d = Cᵀ D / d,   ∇²d = (∇²(½d²) − ∇d ∇dᵀ) / d.
-// Both lie in the span of Cᵀ's 3 columns and G's m (at most 5 of the 12 dimensions): `range`
-// gets an orthonormal basis of that span (zero columns past it), in which the Hessian's
-// projection to positive semi-definite costs a 5 × 5 eigenproblem instead of a 12 × 12 one.
+// Both lie in the span of Cᵀ's 3 columns and G's m (at most 5 of the 12 dimensions): `range`,
+// where given, gets an orthonormal basis of that span (zero columns past it), in which the
+// Hessian's projection to positive semi-definite costs a 5 × 5 eigenproblem instead of a
+// 12 × 12 one.
 // False where that does not hold: d ≈ 0, or a feature whose tangents are dependent
 // (parallel edges, a degenerate triangle: the closest points are not unique there).
 using PairRange = Eigen::Matrix<double, 12, 5>;
 bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& g, PairVector12& grad, PairMatrix12& hess,
-                          PairRange& range) {
+                          PairRange* range = nullptr) {
   const double d = g.diff.norm();
   if (!(d > 1e-12)) return false;
   double e[2][4] = {};
@@ -182,9 +183,11 @@ bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& 
   // Coefficient-based products (lazyProduct) throughout: at these sizes Eigen's general
   // product kernel costs more in its set-up than in its arithmetic.
   hess = C.transpose().lazyProduct(C);
-  range.setZero();
-  range.leftCols<3>() = C.transpose() / std::sqrt(g.weights[0] * g.weights[0] + g.weights[1] * g.weights[1] +
-                                                  g.weights[2] * g.weights[2] + g.weights[3] * g.weights[3]);
+  if (range) {
+    range->setZero();
+    range->leftCols<3>() = C.transpose() / std::sqrt(g.weights[0] * g.weights[0] + g.weights[1] * g.weights[1] +
+                                                     g.weights[2] * g.weights[2] + g.weights[3] * g.weights[3]);
+  }
   if (m > 0) {
     Eigen::Matrix<double, 3, 2> T = Eigen::Matrix<double, 3, 2>::Zero();
     Eigen::Matrix<double, 12, 2> G = Eigen::Matrix<double, 12, 2>::Zero();
@@ -201,12 +204,12 @@ bool distance_derivatives(bool edge, const PairVector12& y, const PairGeometry& 
     hess -= GA.lazyProduct(G.transpose());
     // G's columns orthogonalised against the basis so far (Gram–Schmidt, twice for rounding);
     // one in its span already stays zero.
-    for (int i = 0; i < m; ++i) {
+    for (int i = 0; range && i < m; ++i) {
       PairVector12 q = G.col(i);
       const double length = q.norm();
       for (int pass = 0; pass < 2; ++pass)
-        for (int k = 0; k < 3 + i; ++k) q -= range.col(k).dot(q) * range.col(k);
-      if (q.norm() > 1e-10 * length) range.col(3 + i) = q.normalized();
+        for (int k = 0; k < 3 + i; ++k) q -= range->col(k).dot(q) * range->col(k);
+      if (q.norm() > 1e-10 * length) range->col(3 + i) = q.normalized();
     }
   }
   hess = (hess - grad * grad.transpose()) / d;
@@ -463,27 +466,31 @@ PenaltyContactTerm::PairMatrix PenaltyContactTerm::projected_pair_hessian(const 
   for (int j = 0; j < 4; ++j) y.segment<3>(3 * j) = node3(x, c.nodes[j]);
   PairMatrix H;
   PairVector grad;
+  const bool exact = jacobian_mode_ == JacobianMode::exact;
   PairRange range;
   const PairGeometry g = pair_geometry(c.edge, y.segment<3>(0), y.segment<3>(3), y.segment<3>(6), y.segment<3>(9));
-  if (distance_derivatives(c.edge, y, g, grad, H, range)) {
+  const bool closed_form = distance_derivatives(c.edge, y, g, grad, H, exact ? nullptr : &range);
+  if (closed_form) {
     double magnitude = 0, slope = 0;
     pair_force(g.diff.norm(), magnitude, slope);
     H = slope * grad * grad.transpose() - magnitude * H;  // κ (b'' ∇d ∇dᵀ + b' ∇²d)
-    const PairMatrix symmetric = 0.5 * (H + H.transpose());
-    if (jacobian_mode_ == JacobianMode::exact) return symmetric;
-    // H = Q S Qᵀ with Q = range: S's eigenpairs (λ, v) are H's (λ, Q v), and the rest of H's
-    // eigenvalues are zero.
-    const Eigen::Matrix<double, 5, 12> RH = range.transpose().lazyProduct(symmetric);
-    const Eigen::Matrix<double, 5, 5> S = RH.lazyProduct(range);
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(0.5 * (S + S.transpose()));
-    const PairRange W = range.lazyProduct(eig.eigenvectors());
-    const PairRange WL = W * eig.eigenvalues().cwiseMax(0.0).asDiagonal();
-    return WL.lazyProduct(W.transpose());
+  } else {
+    pair_hessian_by_differences(c.edge, y, H);
   }
-  pair_hessian_by_differences(c.edge, y, H);
-  if (jacobian_mode_ == JacobianMode::exact) return 0.5 * (H + H.transpose());
-  const Eigen::SelfAdjointEigenSolver<PairMatrix> eig(0.5 * (H + H.transpose()));
-  return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+  const PairMatrix symmetric = 0.5 * (H + H.transpose());
+  if (exact) return symmetric;
+  if (!closed_form) {
+    const Eigen::SelfAdjointEigenSolver<PairMatrix> eig(symmetric);
+    return eig.eigenvectors() * eig.eigenvalues().cwiseMax(0.0).asDiagonal() * eig.eigenvectors().transpose();
+  }
+  // H = Q S Qᵀ with Q = range: S's eigenpairs (λ, v) are H's (λ, Q v), and the rest of H's
+  // eigenvalues are zero.
+  const Eigen::Matrix<double, 5, 12> RH = range.transpose().lazyProduct(symmetric);
+  const Eigen::Matrix<double, 5, 5> S = RH.lazyProduct(range);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 5, 5>> eig(0.5 * (S + S.transpose()));
+  const PairRange W = range.lazyProduct(eig.eigenvectors());
+  const PairRange WL = W * eig.eigenvalues().cwiseMax(0.0).asDiagonal();
+  return WL.lazyProduct(W.transpose());
 }
 
 void PenaltyContactTerm::pair_hessian_by_differences(bool edge, const PairVector& y, PairMatrix& H) const {

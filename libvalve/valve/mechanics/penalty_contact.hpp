@@ -199,6 +199,8 @@ class PenaltyContactTerm final : public ContactForceTerm {
   /// The active contacts at x: those found by the last update_couplings if x is where it
   /// ran (a Jacobian evaluation asks twice at one state), else computed afresh into `scratch`.
   const std::vector<Contact>& contacts_at(const VecX& x, std::vector<Contact>& scratch) const;
+  /// Whether update_couplings last found the active contacts at x.
+  bool contacts_found_at(const VecX& x) const { return contacts_x_.size() == x.size() && contacts_x_ == x; }
   void rebuild_candidates(const VecX& x);
   /// Largest node motion the candidate list tolerates before a rebuild: (D − δ − ξ)/4.
   double verlet_step() const { return 0.25 * (detection_ - reach()); }
