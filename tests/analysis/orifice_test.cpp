@@ -70,6 +70,38 @@ TEST_CASE("orifice: the gap between two sheets, narrowed by their thickness", "[
   CHECK(projected_orifice(m, x, ValveAxis{Vec3(-3, 2, 5), Vec3(0, 0, -1)}, 0.25).area_mm2 == Approx(0.5 * 10).margin(0.4));
 }
 
+TEST_CASE("orifice: a triangle inside a frame covers its own area widened by the dilation", "[analysis][orifice]") {
+  // A square frame [-5, 5]² minus [-4, 4]² (its outer corners attached: the cross-section is
+  // the 10 x 10 square) and one slanted triangle inside it. Dilated by r the frame leaves the
+  // square (8 - 2r)² open, less the triangle's own dilation: its area, its perimeter times r
+  // and a disc of radius r (Steiner's formula for a convex set). Pixel centres err by at
+  // most a pixel along every border: (4 x 6 + 12) mm x 0.01 mm, under 0.4 mm².
+  TriMesh m;
+  m.points.resize(11, 3);
+  m.points << -5, -5, 0, 5, -5, 0, 5, 5, 0, -5, 5, 0, -4, -4, 0, 4, -4, 0, 4, 4, 0, -4, 4, 0,  //
+      -1, -1, 0, 1.5, -0.5, 0, 0, 1.2, 0;
+  for (int k = 0; k < 4; ++k) {
+    const int a = k, b = (k + 1) % 4;
+    m.triangles.emplace_back(a, b, 4 + b);
+    m.triangles.emplace_back(a, 4 + b, 4 + a);
+  }
+  m.triangles.emplace_back(8, 9, 10);
+  m.leaflet.assign(8, 0);
+  m.leaflet.push_back(1);
+  m.boundary.assign(4, BoundaryType::attached);
+  m.boundary.resize(8, BoundaryType::interior);
+  m.boundary.resize(11, BoundaryType::free_edge);
+  m.fill_defaults();
+  const VecX x = flatten(m.points);
+  const Vec3 a = m.points.row(8), b = m.points.row(9), c = m.points.row(10);
+  const double area = 0.5 * (b - a).cross(c - a).norm(), perimeter = (b - a).norm() + (c - b).norm() + (a - c).norm();
+  const ValveAxis axis{Vec3(0, 0, 0), Vec3(0, 0, 1)};
+  for (const double r : {0.0, 0.5, 1.0}) {
+    const double open = (8 - 2 * r) * (8 - 2 * r) - (area + perimeter * r + M_PI * r * r);
+    CHECK(projected_orifice(m, x, axis, r, 0.01).area_mm2 == Approx(open).margin(0.4));
+  }
+}
+
 TEST_CASE("orifice: the same after a rigid motion of valve and axis", "[analysis][orifice]") {
   const TriMesh m = split_square(2.0);
   const Mat3 R = Eigen::AngleAxisd(0.9, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();

@@ -4,12 +4,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "valve/core/error.hpp"
-#include "valve/mesh/closest_point.hpp"
 
 namespace valve {
 
@@ -17,16 +18,57 @@ namespace {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-double segment_distance2(const Vec2& q, const Vec2& a, const Vec2& b) {
-  return (a + point_segment_parameter(q, a, b) * (b - a) - q).squaredNorm();
+// The x-range, at height y, of the points within r of segment (a, b) (a capsule: convex, so
+// its section is one interval); false where the line misses it.
+bool capsule_span(const Vec2& a, const Vec2& b, double r, double y, double& lo, double& hi) {
+  lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  auto include = [&](double from, double to) {
+    if (from <= to) lo = std::min(lo, from), hi = std::max(hi, to);
+  };
+  // The end discs.
+  for (const Vec2& c : {a, b}) {
+    const double dy = y - c.y(), h2 = r * r - dy * dy;
+    if (h2 >= 0) include(c.x() - std::sqrt(h2), c.x() + std::sqrt(h2));
+  }
+  // The band between them: the projection onto the segment within [0, 1] and the distance
+  // from its line within r, each linear in x (or constant along a row).
+  const Vec2 d = b - a;
+  const double length2 = d.squaredNorm();
+  if (length2 > 0) {
+    double from = -std::numeric_limits<double>::infinity(), to = -from;
+    auto clip = [&](double slope, double offset, double low, double high) {  // low <= slope x + offset <= high
+      if (slope == 0) {
+        if (offset < low || offset > high) from = 1, to = 0;
+        return;
+      }
+      double x0 = (low - offset) / slope, x1 = (high - offset) / slope;
+      if (x0 > x1) std::swap(x0, x1);
+      from = std::max(from, x0), to = std::min(to, x1);
+    };
+    // t = ((x − a.x) d.x + (y − a.y) d.y) / |d|², cross = d.x (y − a.y) − d.y (x − a.x).
+    clip(d.x() / length2, (-a.x() * d.x() + (y - a.y()) * d.y()) / length2, 0.0, 1.0);
+    const double length = std::sqrt(length2);
+    clip(-d.y() / length, (d.x() * (y - a.y()) + d.y() * a.x()) / length, -r, r);
+    include(from, to);
+  }
+  return lo <= hi;
 }
 
-// q inside the triangle (either winding; a degenerate triangle contains nothing) or within
-// `r` of its edges.
-bool near_triangle(const Vec2& q, const Vec2& a, const Vec2& b, const Vec2& c, double r2) {
-  const double s0 = cross2(b - a, q - a), s1 = cross2(c - b, q - b), s2 = cross2(a - c, q - c);
-  if ((s0 > 0 && s1 > 0 && s2 > 0) || (s0 < 0 && s1 < 0 && s2 < 0)) return true;
-  return segment_distance2(q, a, b) <= r2 || segment_distance2(q, b, c) <= r2 || segment_distance2(q, c, a) <= r2;
+// The x-range, at height y, of the points inside triangle (a, b, c) or within r of its edges
+// (convex: one interval); false where the line misses it.
+bool dilated_triangle_span(const Vec2& a, const Vec2& b, const Vec2& c, double r, double y, double& lo, double& hi) {
+  lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  const Vec2* corners[3] = {&a, &b, &c};
+  for (int k = 0; k < 3; ++k) {
+    const Vec2 &p = *corners[k], &q = *corners[(k + 1) % 3];
+    if ((p.y() <= y) != (q.y() <= y)) {  // the edge crosses the row: the triangle's own section
+      const double x = p.x() + (y - p.y()) / (q.y() - p.y()) * (q.x() - p.x());
+      lo = std::min(lo, x), hi = std::max(hi, x);
+    }
+    double from = 0, to = 0;
+    if (capsule_span(p, q, r, y, from, to)) lo = std::min(lo, from), hi = std::max(hi, to);
+  }
+  return lo <= hi;
 }
 
 // A grid over the cross-section's bounding box larger than this many pixels gets coarser
@@ -91,19 +133,20 @@ OrificeResult projected_orifice(const TriMesh& m, const VecX& x, const ValveAxis
   const auto centre = [&](int ix, int iy) { return Vec2(lo.x() + (ix + 0.5) * pixel, lo.y() + (iy + 0.5) * pixel); };
 
   std::vector<char> covered(static_cast<std::size_t>(nx) * ny, 0);
-  const double r2 = dilation_mm * dilation_mm;
+  // Each dilated triangle row by row: the pixels whose centres lie in its section of that row.
   for (const Tri& t : m.triangles) {
     const Vec2 &a = p[t[0]], &b = p[t[1]], &c = p[t[2]];
-    const Vec2 tlo = a.cwiseMin(b).cwiseMin(c).array() - dilation_mm, thi = a.cwiseMax(b).cwiseMax(c).array() + dilation_mm;
-    const int x0 = std::max(0, static_cast<int>(std::floor((tlo.x() - lo.x()) / pixel - 0.5)));
-    const int x1 = std::min(nx - 1, static_cast<int>(std::ceil((thi.x() - lo.x()) / pixel - 0.5)));
-    const int y0 = std::max(0, static_cast<int>(std::floor((tlo.y() - lo.y()) / pixel - 0.5)));
-    const int y1 = std::min(ny - 1, static_cast<int>(std::ceil((thi.y() - lo.y()) / pixel - 0.5)));
-    for (int iy = y0; iy <= y1; ++iy)
-      for (int ix = x0; ix <= x1; ++ix) {
-        char& cell = covered[static_cast<std::size_t>(iy) * nx + ix];
-        if (!cell && near_triangle(centre(ix, iy), a, b, c, r2)) cell = 1;
-      }
+    const double tlo = std::min({a.y(), b.y(), c.y()}) - dilation_mm, thi = std::max({a.y(), b.y(), c.y()}) + dilation_mm;
+    const int y0 = std::max(0, static_cast<int>(std::floor((tlo - lo.y()) / pixel - 0.5)));
+    const int y1 = std::min(ny - 1, static_cast<int>(std::ceil((thi - lo.y()) / pixel - 0.5)));
+    for (int iy = y0; iy <= y1; ++iy) {
+      double from = 0, to = 0;
+      if (!dilated_triangle_span(a, b, c, dilation_mm, centre(0, iy).y(), from, to)) continue;
+      const int x0 = std::max(0, static_cast<int>(std::ceil((from - lo.x()) / pixel - 0.5)));
+      const int x1 = std::min(nx - 1, static_cast<int>(std::floor((to - lo.x()) / pixel - 0.5)));
+      if (x0 <= x1) std::fill(covered.begin() + static_cast<std::ptrdiff_t>(iy) * nx + x0,
+                              covered.begin() + static_cast<std::ptrdiff_t>(iy) * nx + x1 + 1, 1);
+    }
   }
 
   // Uncovered pixel centres inside the polygon, row by row (even-odd spans).
