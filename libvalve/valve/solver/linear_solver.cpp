@@ -232,11 +232,17 @@ class SymmetricPartBiCGStab final : public LinearSolver {
 }  // namespace
 
 void limit_blas_threads_unless_set() {
-  if (std::getenv("OPENBLAS_NUM_THREADS")) return;
   // Looked up at run time: Debian's BLAS is chosen by alternatives (OpenBLAS, reference
   // BLAS, BLIS), and only OpenBLAS has this entry point; elsewhere this does nothing.
   using SetThreads = void (*)(int);
-  if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+  if (!std::getenv("OPENBLAS_NUM_THREADS"))
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+  // CHOLMOD's supernodal factorization (SuiteSparse 5.12) runs small loops per supernode in
+  // OpenMP regions of a fixed 4 threads, whatever OMP_NUM_THREADS says. With no active level
+  // allowed every region runs on the calling thread alone (libgomp, loaded with CHOLMOD, holds
+  // the setting for the process).
+  if (!std::getenv("OMP_NUM_THREADS") && !std::getenv("OMP_MAX_ACTIVE_LEVELS"))
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"))) set(0);
 }
 
 namespace {
