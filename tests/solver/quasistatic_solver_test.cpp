@@ -1,6 +1,8 @@
 // When the quasi-static solver's contact Hessians are exact rather than projected.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "valve/solver/quasistatic_solver.hpp"
 
 using namespace valve;
@@ -73,4 +75,33 @@ TEST_CASE("the adaptive forcing term is never tighter than a fixed tolerance abo
   ForcingTerm forcing(0.05, 1e-6);
   CHECK(forcing.next(1.0) == Approx(0.05));
   CHECK(forcing.next(1e-3) == Approx(0.05));
+}
+
+TEST_CASE("an increment still closing at its iteration limit goes on; one that only wanders stops there", "[solver][quasistatic]") {
+  // At the limit of 4 the last quarter's best (1) is not below half the best before it (1).
+  IncrementBudget levelled(4);
+  const double level[] = {5, 2, 1, 1};
+  for (int it = 0; it < 4; ++it) {
+    REQUIRE(levelled.allows(it));
+    levelled.record(level[it]);
+  }
+  CHECK(!levelled.allows(4));
+  IncrementBudget still_falling(4);
+  const double halving[] = {8, 4, 2, 0.9, 0.4, 0.2, 0.1, 0.04};
+  int it = 0;
+  for (; still_falling.allows(it) && it < 8; ++it) still_falling.record(halving[it]);
+  CHECK(it == 8);  // extended at 4 (0.9 below half of 2) and runs its second round
+  // A residual wandering between 1 and 3 never halves its best: no extension.
+  IncrementBudget wandering(40);
+  for (it = 0; wandering.allows(it); ++it) wandering.record(1 + 2 * std::abs(std::sin(0.7 * it)));
+  CHECK(it == 40);
+  // Falling fourfold each round of 10 for three rounds, then level: extended at 10, 20 and 30,
+  // stopped at 40.
+  IncrementBudget levels_off(10);
+  double r = 1;
+  for (it = 0; levels_off.allows(it); ++it) {
+    if (it < 30 && it % 10 == 9) r *= 0.25;
+    levels_off.record(r);
+  }
+  CHECK(it == 40);
 }
