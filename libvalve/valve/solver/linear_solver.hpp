@@ -91,7 +91,7 @@ class LinearSolver {
 
 /// Keeps OpenBLAS (behind CHOLMOD supernodal and UMFPACK) to one thread unless the user set
 /// OPENBLAS_NUM_THREADS, and CHOLMOD's OpenMP regions to the calling thread unless the user
-/// set OMP_NUM_THREADS or OMP_MAX_ACTIVE_LEVELS. Why: our systems are small (10^3-10^4
+/// set OMP_MAX_ACTIVE_LEVELS. Why: our systems are small (10^3-10^4
 /// unknowns) and factorized thousands of times; on the 2-core machine an unpinned mitral
 /// contact closure spent 21 s of a 90 s run in the kernel (BLAS threads spinning and waking),
 /// and CHOLMOD's fixed 4-thread regions cost the x16 mitral BDF2 closure 49.5 s against 29.2 s
