@@ -1,4 +1,5 @@
-// When the quasi-static solver's contact Hessians are exact rather than projected.
+// The quasi-static solver's schedules: when contact Hessians are exact rather than projected,
+// how accurately each Newton direction is solved, and how many directions an increment may take.
 #include <catch2/catch.hpp>
 
 #include <cmath>
