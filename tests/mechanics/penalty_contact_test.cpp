@@ -732,6 +732,18 @@ TEST_CASE("penalty contact exclusions, step limit and option checks", "[mechanic
   PenaltyContactTerm c(grid, PenaltyContactOptions{}, std::vector<char>(27, 0));
   CHECK(c.detection_distance() == Approx(0.25 + 4 * std::max(0.25, mean_edge / 2)));
   CHECK(c.max_step_length() == Approx(0.1));  // never more than 0.4 δ
+  // max_detection caps the automatic distance (2.38 mm here) and leaves a smaller one alone.
+  PenaltyContactOptions capped;
+  capped.max_detection = 1.5;
+  CHECK(PenaltyContactTerm(grid, capped, std::vector<char>(27, 0)).detection_distance() == 1.5);
+  capped.max_detection = 3.0;
+  CHECK(PenaltyContactTerm(grid, capped, std::vector<char>(27, 0)).detection_distance() ==
+        Approx(0.25 + 4 * std::max(0.25, mean_edge / 2)));
+  capped.max_detection = 0.25;  // not beyond the separation
+  CHECK_THROWS_AS(capped.validate(), InputError);
+  capped.max_detection = 1.5;
+  capped.detection = 2.0;  // a given distance takes no cap
+  CHECK_THROWS_AS(capped.validate(), InputError);
   PenaltyContactOptions bad;
   bad.separation = 0;
   CHECK_THROWS_AS(bad.validate(), InputError);

@@ -109,3 +109,22 @@ TEST_CASE("solver.quasistatic.forcing: fixed by default, adaptive on request, an
   CHECK(forcing({{"forcing", "adaptive"}}) == NewtonForcing::adaptive);
   CHECK_THROWS_WITH(forcing({{"forcing", "exact"}}), Catch::Contains("solver.quasistatic.forcing"));
 }
+
+TEST_CASE("contact.max_detection caps the automatic detection distance and is refused beside a given distance", "[scene][config]") {
+  auto contact = [](const json& block) {
+    const json j = {{"mesh", "m.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},
+                    {"pressure", {{"value", "80 mmHg"}}}, {"contact", block}};
+    return parse_scene(j, "s.json", ".");
+  };
+  const auto capped = contact({{"max_detection", "2.5 mm"}});
+  REQUIRE(capped.penalty_contact);
+  CHECK(capped.penalty_contact->detection == 0);
+  CHECK(capped.penalty_contact->max_detection == Approx(2.5));
+  CHECK(contact({{"model", "seed"}, {"max_detection", "2 mm"}}).contact->max_detection == Approx(2.0));
+  CHECK_THROWS_WITH(contact({{"detection", "3 mm"}, {"max_detection", "2.5 mm"}}),
+                    Catch::Contains("contact.max_detection") && Catch::Contains("detection is given"));
+  CHECK_THROWS_WITH(contact({{"model", "barrier"}, {"offset", "0.5 mm"}, {"max_detection", "0.6 mm"}}),
+                    Catch::Contains("contact.max_detection") && Catch::Contains("separation plus offset"));
+  CHECK_THROWS_WITH(contact({{"model", "seed"}, {"max_detection", "0.05 mm"}}),
+                    Catch::Contains("contact.max_detection") && Catch::Contains("zone"));
+}

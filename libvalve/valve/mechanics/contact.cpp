@@ -49,6 +49,8 @@ void ContactOptions::validate() const {
   if (!(zone > 0)) throw InputError("contact.zone: expected > 0, found " + std::to_string(zone));
   if (detection != 0 && !(detection > zone))
     throw InputError("contact.detection: expected 0 (automatic) or more than the zone width");
+  if (max_detection != 0 && !(max_detection > zone && detection == 0))
+    throw InputError("contact.max_detection: expected 0, or more than the zone width with detection 0");
   if (!between_leaflets && !self_contact)
     throw InputError("contact: expected between_leaflets or self_contact (or both) to be true");
 }
@@ -61,6 +63,7 @@ ContactTerm::ContactTerm(const TriMesh& mesh, const ContactOptions& opt, std::ve
   query_.assign(n, 0);
   for (int i = 0; i < n; ++i) query_[i] = !constrained[3 * i] && topology_.has_triangles(i);
   detection_ = opt_.detection != 0 ? opt_.detection : opt_.zone + topology_.mean_edge_length();
+  if (opt_.max_detection != 0) detection_ = std::min(detection_, opt_.max_detection);
 }
 
 void ContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {

@@ -56,6 +56,7 @@ struct ContactOptions {
   bool normal_side_between_leaflets = true;
   /// Candidate pairs are kept within this distance of a triangle (0: zone + mean edge length).
   double detection = 0;
+  double max_detection = 0;  // mm: caps the automatic distance (detection 0); 0: no cap
   BroadPhaseMethod broad_phase = BroadPhaseMethod::spatial_hash;
   /// Smallest projection barycentric coordinate still counted as "in front" of a triangle;
   /// slightly negative so nodes over an edge or a crease are not let through.

@@ -21,6 +21,8 @@ void PenaltyContactOptions::validate() const {
   if (!(stiffness > 0)) throw InputError("contact.stiffness: expected > 0, found " + std::to_string(stiffness));
   if (detection != 0 && !(detection > separation + offset))
     throw InputError("contact.detection: expected 0 (automatic) or more than the separation (plus the offset)");
+  if (max_detection != 0 && !(max_detection > separation + offset && detection == 0))
+    throw InputError("contact.max_detection: expected 0, or more than the separation (plus the offset) with detection 0");
   if (!between_leaflets && !self_contact)
     throw InputError("contact: expected between_leaflets or self_contact (or both) to be true");
   if (interior_edges && !edge_contact)
@@ -35,6 +37,7 @@ PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContact
   opt_.validate();
   detection_ = opt_.detection != 0 ? opt_.detection
                                    : reach() + 4 * std::max(opt_.separation, 0.5 * topology_.mean_edge_length());
+  if (opt_.max_detection != 0) detection_ = std::min(detection_, opt_.max_detection);
   const int n = mesh.num_nodes();
   constrained_node_.assign(n, 0);
   query_.assign(n, 0);

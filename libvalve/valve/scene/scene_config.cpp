@@ -171,6 +171,12 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     const auto broad_phase = [&c] {
       return parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
     };
+    // A cap on the automatic distance only: a scene that gives the distance needs none.
+    const auto max_detection_fits = [&c](double cap, double detection, double reach, const std::string& reach_name) {
+      if (cap == 0) return;
+      if (detection != 0) c.fail("max_detection", "0 mm when detection is given", format_quantity(cap, Dimension::length));
+      if (cap <= reach) c.fail("max_detection", "0 mm or more than " + reach_name, format_quantity(cap, Dimension::length));
+    };
     const bool between = c.boolean("between_leaflets", true), self = c.boolean("self", true);
     if (!between && !self) c.fail("self", "true when between_leaflets is false", "false");
     const std::string contact_model = c.choice("model", {"penalty", "barrier", "seed"}, std::string("penalty"));
@@ -183,9 +189,11 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       co.self_contact = self;
       co.normal_side_between_leaflets = c.choice("side_between_leaflets", {"normal", "memory"}, std::string("normal")) == "normal";
       co.detection = c.quantity("detection", Dimension::length, co.detection, 0.0, 1e3);
+      co.max_detection = c.quantity("max_detection", Dimension::length, co.max_detection, 0.0, 1e3);
       co.broad_phase = broad_phase();
       if (co.detection != 0 && co.detection <= co.zone)
         c.fail("detection", "0 (automatic) or more than zone", format_quantity(co.detection, Dimension::length));
+      max_detection_fits(co.max_detection, co.detection, co.zone, "zone");
       sc.contact = co;
     } else {
       PenaltyContactOptions po;
@@ -195,6 +203,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
                                 po.potential == ContactPotential::barrier ? kDefaultBarrierStiffness : po.stiffness, 1e-12, 1e12);
       if (po.potential == ContactPotential::barrier) po.offset = c.quantity("offset", Dimension::length, po.offset, 0.0, 1e3);
       po.detection = c.quantity("detection", Dimension::length, po.detection, 0.0, 1e3);
+      po.max_detection = c.quantity("max_detection", Dimension::length, po.max_detection, 0.0, 1e3);
       po.edge_contact = c.boolean("edges", true);
       po.interior_edges = c.boolean("interior_edges", false);
       if (po.interior_edges && !po.edge_contact) c.fail("interior_edges", "false when edges is false", "true");
@@ -203,6 +212,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       po.broad_phase = broad_phase();
       if (po.detection != 0 && po.detection <= po.separation + po.offset)
         c.fail("detection", "0 (automatic) or more than separation plus offset", format_quantity(po.detection, Dimension::length));
+      max_detection_fits(po.max_detection, po.detection, po.separation + po.offset, "separation plus offset");
       sc.penalty_contact = po;
     }
     r.record("contact", c.finish());
