@@ -75,7 +75,7 @@ ClosureRunReport closure_run_metrics(const SceneConfig& scene, const TriMesh& me
     if (const auto* c = dynamic_cast<const ChordaeTerm*>(term.get()); c && model.chordae) {
       const ChordaeNetwork& net = *model.chordae;
       ChordaeState state;
-      state.tension = c->tensions(full_state);
+      state.tension = model.attachment.segment_tensions(c->tensions(full_state));
       int taut = 0;
       double max_tension = 0;
       for (double t : state.tension) taut += t > 0, max_tension = std::max(max_tension, t);
@@ -85,9 +85,7 @@ ClosureRunReport closure_run_metrics(const SceneConfig& scene, const TriMesh& me
                       {"strut", net.count(ChordType::strut)},
                       {"taut", taut},
                       {"max_tension_N", max_tension}};
-      state.attachment_positions.resize(static_cast<int>(net.points.size()), 3);
-      for (std::size_t p = 0; p < net.points.size(); ++p)
-        state.attachment_positions.row(p) = node3(full_state, model.attachment.point_node[p]).transpose();
+      state.attachment_positions = model.attachment.point_positions(full_state);
       report.chordae = std::move(state);
     }
     if (const auto* c = dynamic_cast<const ContactForceTerm*>(term.get()))

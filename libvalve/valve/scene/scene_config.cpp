@@ -306,6 +306,9 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, cc.snap_tolerance, 0.0, 100);
     cc.rest_length_scale = c.number("rest_length_scale", cc.rest_length_scale, 0.2, 5.0);
     cc.types = c.string_list("types", cc.types);
+    const std::string chains = c.choice("chains", {"automatic", "nodes", "condensed"}, std::string("automatic"));
+    cc.chains = chains == "nodes" ? ChordaeConfig::Chains::nodes
+                : chains == "condensed" ? ChordaeConfig::Chains::condensed : ChordaeConfig::Chains::automatic;
     for (const auto& t : cc.types)
       if (t != "primary" && t != "secondary" && t != "strut") c.fail("types", "a list of primary, secondary, strut", t);
     c.document("papillary_tips", "list of [x, y, z] in mm", "as in the chordae file");

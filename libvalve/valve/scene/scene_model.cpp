@@ -74,6 +74,8 @@ SceneModel prepare_scene_model(const SceneConfig& sc, const TriMesh& leaflets, c
     material.default_law = std::make_shared<LinearRodLaw>(cc.youngs_modulus);
     material.diameter = cc.diameter;
     material.density = sc.density;
+    material.condense_chains = cc.chains == ChordaeConfig::Chains::condensed ||
+                               (cc.chains == ChordaeConfig::Chains::automatic && sc.solver == SolverKind::quasistatic);
     if (cc.law == ChordaeConfig::Law::file)
       for (const auto& [name, law] : net.materials) {
         JsonReader r(law, cc.file.string(), "materials." + name);

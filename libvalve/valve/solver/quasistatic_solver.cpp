@@ -26,9 +26,12 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   // 1e-5 to 1e-6 took hundreds of iterations on the sample mitral closure): Eigen's simplicial
   // LLᵀ below kLargeSystemDofs, CHOLMOD's supernodal one above (linear_solver.hpp). A Cholesky
   // refuses a symmetric part that is not positive definite, and δ then shrinks (see the header).
+  // Sized by the free unknowns: held ones stay in the matrix only as unit rows (condensed
+  // chordae hold thousands of points).
   LinearSolverType type = opt.linear_solver;
+  const long free_dofs = std::count(sys.constrained().begin(), sys.constrained().end(), 0);
   if (type == LinearSolverType::automatic)
-    type = sys.num_dofs() < kLargeSystemDofs ? LinearSolverType::llt_bicgstab : LinearSolverType::cholmod_bicgstab;
+    type = free_dofs < kLargeSystemDofs ? LinearSolverType::llt_bicgstab : LinearSolverType::cholmod_bicgstab;
   auto solver = make_linear_solver(type, opt.iterative_tolerance, 2000, sys.num_dofs(), SystemSymmetry::symmetrized);
   SolverSummary sum;
   sum.solver = "quasistatic";
