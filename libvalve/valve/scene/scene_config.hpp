@@ -100,7 +100,7 @@ struct ChordaeConfig {
   /// condensed: a run of chord segments through unbranched points is one rod
   /// (chordae_attachment.hpp), the same equilibrium with fewer unknowns; nodes: every point a
   /// node; automatic: condensed for the quasi-static solver, nodes for the others (BDF2 follows
-  /// the chords' motion, and the remeshed Texas TriValve closure took 9,793 steps condensed
+  /// the chords' motion, and the remeshed Texas TriValve closure takes 9,793 steps condensed
   /// against 3,706 with every point a node).
   enum class Chains { automatic, nodes, condensed } chains = Chains::automatic;
 };
