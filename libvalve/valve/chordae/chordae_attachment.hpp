@@ -12,8 +12,8 @@
 // for the run's length) and a slack one carries nothing: the condensed rod stores the
 // least energy the run can have, and the leaflets feel the same chordae at every
 // equilibrium. The points inside a run are then no unknowns (held, massless; each end keeps
-// the mass it has with every point a node) and are drawn on the rod's line by rest length. The Texas TriValve
-// deck's network has 2,330 such points among 2,424 branch points.
+// the mass it has with every point a node) and are drawn on the rod's line by rest length.
+// The Texas TriValve deck's network has 2,330 such points among 2,424 branch points.
 #include <map>
 #include <memory>
 #include <string>

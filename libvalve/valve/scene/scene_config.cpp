@@ -171,8 +171,11 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     const auto broad_phase = [&c] {
       return parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
     };
-    // A cap on the automatic distance only: a scene that gives the distance needs none.
-    const auto max_detection_fits = [&c](double cap, double detection, double reach, const std::string& reach_name) {
+    // Both distances beyond the contact's reach; the cap on the automatic distance only (a
+    // scene that gives the distance needs none).
+    const auto detection_fits = [&c](double detection, double cap, double reach, const std::string& reach_name) {
+      if (detection != 0 && detection <= reach)
+        c.fail("detection", "0 (automatic) or more than " + reach_name, format_quantity(detection, Dimension::length));
       if (cap == 0) return;
       if (detection != 0) c.fail("max_detection", "0 mm when detection is given", format_quantity(cap, Dimension::length));
       if (cap <= reach) c.fail("max_detection", "0 mm or more than " + reach_name, format_quantity(cap, Dimension::length));
@@ -191,9 +194,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       co.detection = c.quantity("detection", Dimension::length, co.detection, 0.0, 1e3);
       co.max_detection = c.quantity("max_detection", Dimension::length, co.max_detection, 0.0, 1e3);
       co.broad_phase = broad_phase();
-      if (co.detection != 0 && co.detection <= co.zone)
-        c.fail("detection", "0 (automatic) or more than zone", format_quantity(co.detection, Dimension::length));
-      max_detection_fits(co.max_detection, co.detection, co.zone, "zone");
+      detection_fits(co.detection, co.max_detection, co.zone, "zone");
       sc.contact = co;
     } else {
       PenaltyContactOptions po;
@@ -210,9 +211,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
       po.between_leaflets = between;
       po.self_contact = self;
       po.broad_phase = broad_phase();
-      if (po.detection != 0 && po.detection <= po.separation + po.offset)
-        c.fail("detection", "0 (automatic) or more than separation plus offset", format_quantity(po.detection, Dimension::length));
-      max_detection_fits(po.max_detection, po.detection, po.separation + po.offset, "separation plus offset");
+      detection_fits(po.detection, po.max_detection, po.separation + po.offset, "separation plus offset");
       sc.penalty_contact = po;
     }
     r.record("contact", c.finish());
@@ -306,11 +305,11 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
     cc.snap_tolerance = c.quantity("snap_tolerance", Dimension::length, cc.snap_tolerance, 0.0, 100);
     cc.rest_length_scale = c.number("rest_length_scale", cc.rest_length_scale, 0.2, 5.0);
     cc.types = c.string_list("types", cc.types);
+    for (const auto& t : cc.types)
+      if (t != "primary" && t != "secondary" && t != "strut") c.fail("types", "a list of primary, secondary, strut", t);
     const std::string chains = c.choice("chains", {"automatic", "nodes", "condensed"}, std::string("automatic"));
     cc.chains = chains == "nodes" ? ChordaeConfig::Chains::nodes
                 : chains == "condensed" ? ChordaeConfig::Chains::condensed : ChordaeConfig::Chains::automatic;
-    for (const auto& t : cc.types)
-      if (t != "primary" && t != "secondary" && t != "strut") c.fail("types", "a list of primary, secondary, strut", t);
     c.document("papillary_tips", "list of [x, y, z] in mm", "as in the chordae file");
     if (c.has("papillary_tips")) {
       const json& tips = c.raw("papillary_tips");

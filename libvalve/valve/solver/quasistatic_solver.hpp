@@ -47,8 +47,8 @@
 //   can make it so), and δ then shrinks: the proximal term regularises there. That keeps
 //   Newton's path continuous in its start: over eleven starts 1e-6 mm apart the sample mitral
 //   closure spreads 0.013 mm (median, mean over nodes), against 0.18 mm with an LDLᵀ, which
-//   factorises the indefinite matrix and lets δ grow past it; at the mitral scene's 2.5 mm contact
-//   detection the ×16 mitral closure takes 128 factorisations, against 407 with the symmetric
+//   factorises the indefinite matrix and lets δ grow past it; at a fixed 2.5 mm contact detection
+//   (the mitral scene's cap) the ×16 mitral closure takes 128 factorisations, against 407 with the symmetric
 //   part's Cholesky alone as the direction.
 // Symbolic analyses are kept while the pattern holds. A direction that does not descend
 // (∇Φ·Δ >= 0) counts as a failed factorisation.
@@ -150,7 +150,8 @@ class ForcingTerm {
 /// them. An increment that only wanders (a closure stalled against a contact, δ cycling) fails
 /// at the limit, and load continuation takes a smaller one; one that is still closing goes on.
 /// Why: on the Texas TriValve deck the leaflets travel 8 mm per node at steps of at most 0.5 mm,
-/// and the pressure's one increment converges after about 660 directions; at 400 its residual is
+/// and the pressure's one increment converges after about 660 directions (every chord point a
+/// node); at 400 its residual is
 /// near 0.8 of the load and still falling (0.28 at best over the last 100 directions, 0.92
 /// before them), and a fixed limit there sends continuation back to the open valve at half the
 /// load (measured: no convergence in 600 s).
