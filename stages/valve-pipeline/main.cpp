@@ -26,12 +26,16 @@
 // and provenance.json, from the runs' folders as they are).
 // Exit 0 ok, 2 bad pipeline (one line naming file and key, nothing written), 3 some run or
 // plot failed (the summary says which; the tables still hold what the other runs made).
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <string>
 
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/cli.hpp"
+#include "valve/core/parallel.hpp"
 #include "valve/pipeline/pipeline_commands.hpp"
 #include "valve/pipeline/pipeline_spec.hpp"
 #include "valve/pipeline/runner.hpp"
@@ -50,6 +54,10 @@ int main(int argc, char** argv) {
     RunnerOptions options;
     if (command != "list") options.out_dir = cl.require("out");
     options.jobs = pipeline_jobs(cl);
+    // Runs side by side share the cores: each stage's split loops (core/parallel.hpp) get its
+    // share, unless the user chose.
+    if (!std::getenv("VALVE_THREADS"))
+      setenv("VALVE_THREADS", std::to_string(std::max(1, worker_threads() / std::max(options.jobs, 1))).c_str(), 1);
     const PipelineSpec spec = load_pipeline(cl.positional()[1]);
     if (command == "list") return list_pipeline(spec, cl, std::cout);
     if (command == "stamp") return stamp_pipeline_step(spec, cl);

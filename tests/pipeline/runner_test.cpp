@@ -476,6 +476,7 @@ TEST_CASE("snakemake export: a rule waits for the steps whose folders its argume
   CHECK_THAT(rule("d__single"), !Catch::Contains(stamp_a));  // m2 is not m
   // Resources, and the braces of an argument doubled for snakemake's str.format.
   CHECK_THAT(rule("e__single"), Catch::Contains("threads: 3\n") && Catch::Contains("mem_mb=100, runtime=7\n") &&
-                                    Catch::Contains("{{") && Catch::Contains("{params.stage_sha256}"));
+                                    Catch::Contains("{{") && Catch::Contains("{params.stage_sha256}") &&
+                                    Catch::Contains("VALVE_THREADS={threads} "));
   CHECK_THAT(text, Catch::Contains("rule all:\n    input:\n        \"" + step_stamp_path(out / "runs/single", "a").string()));
 }

@@ -11,6 +11,7 @@
 
 #include "valve/core/atomic_file.hpp"
 #include "valve/core/error.hpp"
+#include "valve/core/parallel.hpp"
 #include "valve/core/progress.hpp"
 #include "valve/core/slicer_cli.hpp"
 
@@ -195,6 +196,7 @@ void StageSummary::write() {
 
 int run_stage(const std::string& program, const char* usage, const std::function<int()>& body) {
   try {
+    worker_threads();  // a bad VALVE_THREADS is refused before anything runs
     return body();
   } catch (const HelpRequested&) {
     std::printf("%s", usage);

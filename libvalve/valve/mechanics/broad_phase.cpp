@@ -1,11 +1,14 @@
 #include "valve/mechanics/broad_phase.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <numeric>
 
 #include "valve/core/error.hpp"
+#include "valve/core/parallel.hpp"
 
 namespace valve {
 namespace {
@@ -124,23 +127,39 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
   std::vector<int> fill(start.begin(), start.end() - 1);
   for (size_t t = 0; t < targets.size(); ++t) for_cells(targets[t], [&](long k) { entries[fill[k]++] = static_cast<int>(t); });
 
-  std::vector<int> seen(targets.size(), -1);
+  // The queries in chunks (core/parallel.hpp), each chunk's pairs gathered in query order. A
+  // target is looked at once per query: `seen` holds, per thread, the last (call, query) stamp
+  // that looked at it.
+  static std::atomic<std::uint64_t> calls{0};
+  const std::uint64_t call = ++calls;
   const Box scene{lo, hi};
-  for (size_t q = 0; q < queries.size(); ++q) {
-    if (!overlap(queries[q], scene)) continue;
-    const size_t first = pairs.size();
-    const int id = query_ids[q];
-    for_cells(queries[q], [&](long k) {
-      for (int j = start[k]; j < start[k + 1]; ++j) {
-        const int t = entries[j];
-        if (seen[t] == static_cast<int>(q)) continue;
-        seen[t] = static_cast<int>(q);
-        if (skip(id, t) || !overlap(targets[t], queries[q])) continue;
-        pairs.emplace_back(id, t);
-      }
-    });
-    std::sort(pairs.begin() + first, pairs.end());
-  }
+  const size_t chunks = chunks_for(queries.size());
+  std::vector<std::vector<std::pair<int, int>>> found(chunks);
+  for_each_chunk(queries.size(), chunks, [&](size_t chunk, size_t begin, size_t end) {
+    thread_local std::vector<std::uint64_t> seen;
+    if (seen.size() < targets.size()) seen.resize(targets.size(), 0);
+    auto& out = found[chunk];
+    for (size_t q = begin; q < end; ++q) {
+      if (!overlap(queries[q], scene)) continue;
+      const size_t first = out.size();
+      const int id = query_ids[q];
+      const std::uint64_t stamp = (call << 32) | q;
+      for_cells(queries[q], [&](long k) {
+        for (int j = start[k]; j < start[k + 1]; ++j) {
+          const int t = entries[j];
+          if (seen[t] == stamp) continue;
+          seen[t] = stamp;
+          if (skip(id, t) || !overlap(targets[t], queries[q])) continue;
+          out.emplace_back(id, t);
+        }
+      });
+      std::sort(out.begin() + first, out.end());
+    }
+  });
+  size_t total = 0;
+  for (const auto& f : found) total += f.size();
+  pairs.reserve(total);
+  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
   // Runs are sorted per query; ids that are not strictly increasing need a global sort.
   if (std::adjacent_find(query_ids.begin(), query_ids.end(), std::greater_equal<int>()) != query_ids.end())
     std::sort(pairs.begin(), pairs.end());

@@ -195,11 +195,13 @@ class SnakefileWriter {
     if (out_dir && inside(*out_dir, run.run_dir)) cmd += " && rm -rf -- " + shell_quote({out_dir->string()});
     std::vector<std::string> words{stages_.at(step.stage)};
     words.insert(words.end(), step.args.begin(), step.args.end());
-    cmd += " && code=0 && " + shell_quote(words) + " > " + shell_quote({(run.run_dir / (step.name + ".log")).string()}) +
-           " 2>&1 || code=$?; " +
-           shell_quote({pipeline_exe_.string(), "stamp", pipeline_file, "--out", out.string(), "--run", run.run_id,
-                        "--step", step.name}) +
-           " --exit-code \"$code\"";
+    cmd += " && code=0 && ";
+    // The stage's split loops (core/parallel.hpp) take the rule's threads, not every core.
+    const std::string stage_cmd =
+        shell_quote(words) + " > " + shell_quote({(run.run_dir / (step.name + ".log")).string()}) + " 2>&1 || code=$?; " +
+        shell_quote({pipeline_exe_.string(), "stamp", pipeline_file, "--out", out.string(), "--run", run.run_id,
+                     "--step", step.name}) +
+        " --exit-code \"$code\"";
     text_ << "rule " << unique(rule) << ":\n";
     if (!inputs.empty()) text_ << "    input:" << py_list(inputs) << "\n";
     text_ << "    output: " << py(stamp) << "\n"
@@ -207,7 +209,10 @@ class SnakefileWriter {
           << "    threads: " << spec_step.resources.threads << "\n"
           << "    resources: mem_mb=" << spec_step.resources.mem_mb << ", runtime=" << spec_step.resources.runtime_min
           << "\n"
-          << "    shell: " << py(format_escaped(cmd) + " --stage-sha256 {params.stage_sha256}") << "\n\n";
+          << "    shell: "
+          << py(format_escaped(cmd) + "VALVE_THREADS={threads} " + format_escaped(stage_cmd) +
+                " --stage-sha256 {params.stage_sha256}")
+          << "\n\n";
     ++step_rules_;
   }
 
