@@ -2,6 +2,8 @@
 #include <catch2/catch.hpp>
 
 #include <atomic>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "valve/core/parallel.hpp"
@@ -47,4 +49,18 @@ TEST_CASE("chunks_for keeps short loops in one chunk and cuts long ones by their
   CHECK(chunks_for(63, 32) == 1);
   CHECK(chunks_for(1000, 32) == 31);
   CHECK(worker_threads() >= 1);
+}
+
+TEST_CASE("for_each_chunk rethrows the lowest chunk's error once every chunk has run", "[core][parallel]") {
+  std::atomic<int> ran{0};
+  try {
+    for_each_chunk(64, 8, [&](std::size_t c, std::size_t, std::size_t) {
+      ++ran;
+      if (c == 5 || c == 2) throw std::runtime_error("chunk " + std::to_string(c));
+    });
+    FAIL("no exception");
+  } catch (const std::runtime_error& e) {
+    CHECK(std::string(e.what()) == "chunk 2");
+  }
+  CHECK(ran == 8);
 }

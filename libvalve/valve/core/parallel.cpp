@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cstdlib>
+#include <exception>
 #include <string>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -58,18 +60,34 @@ void for_each_chunk(std::size_t n, std::size_t chunks, const std::function<void(
     }
     return;
   }
+  // An error in a chunk (bad_alloc) is kept until every thread has finished, and the lowest
+  // chunk's is rethrown, as the serial loop would have thrown it first. A helper thread that
+  // cannot start (a process limit) leaves its chunks to the others.
   std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> errors(chunks);
   auto work = [&] {
     for (std::size_t c; (c = next.fetch_add(1)) < chunks;) {
       const auto [b, e] = range(c);
-      body(c, b, e);
+      try {
+        body(c, b, e);
+      } catch (...) {
+        errors[c] = std::current_exception();
+      }
     }
   };
   std::vector<std::thread> helpers;
   helpers.reserve(threads - 1);
-  for (std::size_t t = 1; t < threads; ++t) helpers.emplace_back(work);
+  for (std::size_t t = 1; t < threads; ++t) {
+    try {
+      helpers.emplace_back(work);
+    } catch (const std::system_error&) {
+      break;
+    }
+  }
   work();
   for (auto& h : helpers) h.join();
+  for (const auto& e : errors)
+    if (e) std::rethrow_exception(e);
 }
 
 }  // namespace valve

@@ -16,7 +16,8 @@ int worker_threads();
 
 /// Runs body(chunk, begin, end) over [0, n) cut into `chunks` ranges of near-equal length (fewer
 /// when n is small), on up to worker_threads() threads. The ranges depend on n and `chunks`
-/// only. Each call to body touches its own chunk's data; body must not throw.
+/// only. Each call to body touches its own chunk's data. If body throws, the lowest chunk's
+/// exception is rethrown once every thread has finished.
 void for_each_chunk(std::size_t n, std::size_t chunks, const std::function<void(std::size_t, std::size_t, std::size_t)>& body);
 
 /// Chunks for a loop of n items, `per_chunk` to a chunk (the default suits a pair distance

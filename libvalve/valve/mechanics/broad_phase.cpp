@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -129,9 +130,11 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
 
   // The queries in chunks (core/parallel.hpp), each chunk's pairs gathered in query order. A
   // target is looked at once per query: `seen` holds, per thread, the last (call, query) stamp
-  // that looked at it.
+  // that looked at it. The call counter and `seen` belong together (one pair per instantiation
+  // of this template): a stamp from another counter could match and drop a pair.
   static std::atomic<std::uint64_t> calls{0};
   const std::uint64_t call = ++calls;
+  assert(queries.size() < (std::uint64_t{1} << 32));
   const Box scene{lo, hi};
   const size_t chunks = chunks_for(queries.size());
   std::vector<std::vector<std::pair<int, int>>> found(chunks);
