@@ -6,6 +6,7 @@
 // machine it ran on.
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 namespace valve {
 
@@ -19,6 +20,15 @@ int worker_threads();
 /// only. Each call to body touches its own chunk's data. If body throws, the lowest chunk's
 /// exception is rethrown once every thread has finished.
 void for_each_chunk(std::size_t n, std::size_t chunks, const std::function<void(std::size_t, std::size_t, std::size_t)>& body);
+
+/// Appends each chunk's output to `out`, in chunk order.
+template <class T>
+void append_chunks(std::vector<T>& out, const std::vector<std::vector<T>>& chunks) {
+  std::size_t total = out.size();
+  for (const auto& c : chunks) total += c.size();
+  out.reserve(total);
+  for (const auto& c : chunks) out.insert(out.end(), c.begin(), c.end());
+}
 
 /// Chunks for a loop of n items, `per_chunk` to a chunk (the default suits a pair distance
 /// each); one chunk below two chunks' worth, where starting a thread costs more than it saves.

@@ -159,10 +159,7 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
       std::sort(out.begin() + first, out.end());
     }
   });
-  size_t total = 0;
-  for (const auto& f : found) total += f.size();
-  pairs.reserve(total);
-  for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  append_chunks(pairs, found);
   // Runs are sorted per query; ids that are not strictly increasing need a global sort.
   if (std::adjacent_find(query_ids.begin(), query_ids.end(), std::greater_equal<int>()) != query_ids.end())
     std::sort(pairs.begin(), pairs.end());

@@ -357,7 +357,7 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
 
 void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps) const {
   out.clear();
-  const size_t n_faces = face_pairs_.size(), n = n_faces + edge_pairs_.size();
+  const size_t n = face_pairs_.size() + edge_pairs_.size();
   if (gaps) gaps->assign(n, PairGap{});
   // The normal from the first side's point to the second's closest point (zero when they
   // coincide: no direction to bound the closing by).
@@ -417,39 +417,34 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
     return true;
   };
   // Every pair on its own, in chunks (core/parallel.hpp); the contacts are gathered in order.
-  const auto& tris = topology_.triangles();
-  const auto& edges = topology_.edges();
   const size_t chunks = chunks_for(n);
   std::vector<std::vector<Contact>> found(chunks);
   for_each_chunk(n, chunks, [&](size_t chunk, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k) {
-      const bool edge = k >= n_faces;
       int nodes[4];
-      if (!edge) {
-        const auto& [i, t] = face_pairs_[k];
-        nodes[0] = i, nodes[1] = tris[t][0], nodes[2] = tris[t][1], nodes[3] = tris[t][2];
-      } else {
-        const auto& [be, e] = edge_pairs_[k - n_faces];
-        nodes[0] = edges[be].first, nodes[1] = edges[be].second, nodes[2] = edges[e].first, nodes[3] = edges[e].second;
-      }
+      const bool edge = pair_nodes(k, nodes);
       if (!out_of_reach(k, nodes, edge ? 2 : 1)) add(k, edge, nodes, found[chunk]);
     }
   });
-  for (const auto& f : found) out.insert(out.end(), f.begin(), f.end());
+  append_chunks(out, found);
+}
+
+bool PenaltyContactTerm::pair_nodes(size_t k, int (&nodes)[4]) const {
+  if (k < face_pairs_.size()) {
+    const auto& [i, t] = face_pairs_[k];
+    const Tri& tri = topology_.triangles()[t];
+    nodes[0] = i, nodes[1] = tri[0], nodes[2] = tri[1], nodes[3] = tri[2];
+    return false;
+  }
+  const auto& [be, e] = edge_pairs_[k - face_pairs_.size()];
+  const auto& edges = topology_.edges();
+  nodes[0] = edges[be].first, nodes[1] = edges[be].second, nodes[2] = edges[e].first, nodes[3] = edges[e].second;
+  return true;
 }
 
 PenaltyContactTerm::PairGap PenaltyContactTerm::measured_gap(size_t k, const VecX& x) const {
-  const bool edge = k >= face_pairs_.size();
   int n[4];
-  if (!edge) {
-    const auto& [i, t] = face_pairs_[k];
-    const Tri& tri = topology_.triangles()[t];
-    n[0] = i, n[1] = tri[0], n[2] = tri[1], n[3] = tri[2];
-  } else {
-    const auto& [be, e] = edge_pairs_[k - face_pairs_.size()];
-    const auto& edges = topology_.edges();
-    n[0] = edges[be].first, n[1] = edges[be].second, n[2] = edges[e].first, n[3] = edges[e].second;
-  }
+  const bool edge = pair_nodes(k, n);
   const PairGeometry g = pair_geometry(edge, node3(x, n[0]), node3(x, n[1]), node3(x, n[2]), node3(x, n[3]));
   const double d = g.diff.norm();
   return PairGap{d, d > 1e-12 ? Vec3(g.diff / d) : Vec3::Zero()};

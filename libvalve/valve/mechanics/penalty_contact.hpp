@@ -197,6 +197,9 @@ class PenaltyContactTerm final : public ContactForceTerm {
   };
   /// The gap of candidate pair k (face pairs, then edge pairs) measured at x.
   PairGap measured_gap(size_t k, const VecX& x) const;
+  /// Candidate pair k's nodes: the node and its triangle's three, or two edges' two each; true
+  /// for an edge pair.
+  bool pair_nodes(size_t k, int (&nodes)[4]) const;
   /// Also records, where given, every candidate pair's gap (face pairs, then edge pairs).
   void active_contacts(const VecX& x, std::vector<Contact>& out, std::vector<PairGap>* gaps = nullptr) const;
   /// The active contacts at x: those found by the last update_couplings if x is where it
