@@ -246,10 +246,11 @@ TEST_CASE("barrier contact: IPC's log barrier beyond the offset, its force the e
   CHECK((ana - num).norm() > 1e-3 * num.norm());
 }
 
-TEST_CASE("barrier contact: a pair within the reach where the solve starts is excluded too", "[mechanics][penalty_contact]") {
+TEST_CASE("barrier contact: two leaflets that start within the reach act within half their start gap", "[mechanics][penalty_contact]") {
   // Rest 1 mm apart, the solve starting 0.1 mm apart (as two leaflets' attachments sewn onto
-  // the same stretch of distended root wall): the pair is left out from the start on, so it
-  // neither pushes nor bounds the step, as a pair close at rest would not.
+  // the same stretch of distended root wall): the pair's reach shrinks to half its start gap
+  // (0.05 mm), so it does not push at the start, pushes once closer, and no step takes it
+  // through the other sheet.
   PenaltyContactOptions opt;
   opt.potential = ContactPotential::barrier;
   opt.separation = 0.25;
@@ -259,17 +260,50 @@ TEST_CASE("barrier contact: a pair within the reach where the solve starts is ex
   told.start_at(start);
   told.update_couplings(start);
   untold.update_couplings(start);
+  CHECK(told.statistics().narrow_pairs > 0);
+  CHECK(untold.statistics().narrow_pairs == 0);
   CHECK(forces(untold, start).norm() > 0);
   CHECK(forces(told, start).norm() == 0);
-  VecX down = VecX::Zero(18);
-  down[3 * 3 + 2] = -0.09;  // node 3 toward the other sheet's face, to 0.01 mm
-  CHECK(untold.step_ratio(start, down) > 1);
-  CHECK(told.step_ratio(start, down) < 1);
-  // A pair beyond the reach at the start still acts once it comes close.
+  VecX toward = VecX::Zero(18);
+  toward[3 * 3 + 2] = -0.04;  // node 3 toward the other sheet's face, to 0.06 mm
+  CHECK(told.step_ratio(start, toward) <= 1);
+  const VecX closer = flatten(two_sheets(0.03).points);
+  told.update_couplings(closer);
+  const VecX pushed = forces(told, closer);
+  CHECK(pushed[3 * 3 + 2] > 0);  // node 3 pushed back up, away from the face below it
+  CHECK(pushed.sum() == Approx(0).margin(1e-12 * pushed.norm()));  // with its reaction
+  told.update_couplings(start);
+  VecX through = VecX::Zero(18);
+  through[3 * 3 + 2] = -0.2;  // to 0.1 mm past the face
+  CHECK(told.step_ratio(start, through) > 1);
+  // A pair beyond the reach at the start acts with the whole reach once it comes close.
   PenaltyContactTerm far_start(two_sheets(1.0), opt, std::vector<char>(18, 0));
   far_start.start_at(flatten(two_sheets(0.5).points));
   far_start.update_couplings(start);
+  CHECK(far_start.statistics().narrow_pairs == 0);
   CHECK(forces(far_start, start).norm() > 0);
+}
+
+TEST_CASE("barrier contact: pairs that start touching or within one leaflet are excluded", "[mechanics][penalty_contact]") {
+  // Two leaflets starting closer than a thousandth of the reach (0.25 µm here) have no gap of
+  // their own to keep; two parts of one leaflet within the reach are neighbours at a bend.
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.separation = 0.25;
+  const VecX touching = flatten(two_sheets(1e-4).points);
+  PenaltyContactTerm two_leaflets(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  two_leaflets.start_at(touching);
+  two_leaflets.update_couplings(touching);
+  CHECK(two_leaflets.statistics().narrow_pairs == 0);
+  CHECK(forces(two_leaflets, touching).norm() == 0);
+  TriMesh one = two_sheets(1.0);
+  one.leaflet = {0, 0};
+  PenaltyContactTerm within(one, opt, std::vector<char>(18, 0));
+  const VecX start = flatten(two_sheets(0.1).points);
+  within.start_at(start);
+  within.update_couplings(flatten(two_sheets(0.03).points));
+  CHECK(within.statistics().narrow_pairs == 0);
+  CHECK(forces(within, flatten(two_sheets(0.03).points)).norm() == 0);
 }
 
 TEST_CASE("barrier contact: two leaflets close at rest but apart where the mesh starts push back", "[mechanics][penalty_contact]") {
@@ -290,10 +324,15 @@ TEST_CASE("barrier contact: two leaflets close at rest but apart where the mesh 
   PenaltyContactTerm within(one_leaflet, opt, std::vector<char>(18, 0));
   within.update_couplings(near);
   CHECK(forces(within, near).norm() == 0);
-  // Without start positions the rest shape is the start: two leaflets close at rest are left out.
+  // Without start positions the rest shape is the start: two leaflets close at rest act only
+  // within half their distance there.
   PenaltyContactTerm rest_only(two_sheets(0.1), opt, std::vector<char>(18, 0));
   rest_only.update_couplings(near);
+  CHECK(rest_only.statistics().narrow_pairs > 0);
   CHECK(forces(rest_only, near).norm() == 0);
+  const VecX closer = flatten(two_sheets(0.03).points);
+  rest_only.update_couplings(closer);
+  CHECK(forces(rest_only, closer).norm() > 0);
 }
 
 namespace {

@@ -46,32 +46,73 @@ bool ContactTopology::same_leaflet_edges(int a, int b, int c, int d) const {
   return false;
 }
 
+namespace {
+
+// Sorts a list of (pair, start gap) and keeps each pair once, with its smallest gap.
+template <class Key>
+void keep_smallest_gap(std::vector<std::pair<Key, double>>& list) {
+  std::sort(list.begin(), list.end());
+  list.erase(std::unique(list.begin(), list.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+             list.end());
+}
+
+template <class Key>
+double gap_of(const std::vector<std::pair<Key, double>>& list, const Key& key) {
+  const auto it = std::lower_bound(list.begin(), list.end(), key, [](const auto& e, const Key& k) { return e.first < k; });
+  return it != list.end() && it->first == key ? it->second : 0.0;
+}
+
+std::array<int, 4> edge_pair_key(int a, int b, int c, int d) {
+  std::array<int, 4> key{std::min(a, b), std::max(a, b), std::min(c, d), std::max(c, d)};
+  if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
+  return key;
+}
+
+}  // namespace
+
 void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only) {
   if (!incidence_only()) return;
+  const double touching = kTouchingFraction * rest_reach_;
   for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash)) {
-    if (within_leaflets_only && !same_leaflet(i, t)) continue;
+    const bool same = same_leaflet(i, t);
+    if (within_leaflets_only && !same) continue;
     const Tri& tri = triangles_[t];
     const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
     const Vec3 w = closest_point_weights(p, a, b, c);
-    if ((p - (w[0] * a + w[1] * b + w[2] * c)).norm() <= rest_reach_) rest_close_faces_.emplace_back(i, t);
+    const double d = (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
+    if (d > rest_reach_) continue;
+    if (same || d <= touching)
+      rest_close_faces_.emplace_back(i, t);
+    else
+      narrow_faces_.push_back({{i, t}, d});
   }
   std::sort(rest_close_faces_.begin(), rest_close_faces_.end());
   rest_close_faces_.erase(std::unique(rest_close_faces_.begin(), rest_close_faces_.end()), rest_close_faces_.end());
+  keep_smallest_gap(narrow_faces_);
   std::vector<int> all(edges_.size());
   for (size_t e = 0; e < edges_.size(); ++e) all[e] = static_cast<int>(e);
   for (const auto& [e1, e2] : edge_box_pairs(x, edges_, all, rest_reach_)) {
     const auto [a, b] = edges_[e1];
     const auto [c, d] = edges_[e2];
-    if (within_leaflets_only && !same_leaflet_edges(a, b, c, d)) continue;
+    const bool same = same_leaflet_edges(a, b, c, d);
+    if (within_leaflets_only && !same) continue;
     const auto [s1, s2] = closest_segment_parameters(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
-    const Vec3 gap = node3(x, a) + s1 * (node3(x, b) - node3(x, a)) - node3(x, c) - s2 * (node3(x, d) - node3(x, c));
-    if (gap.norm() > rest_reach_) continue;
-    std::array<int, 4> key{a, b, c, d};
-    if (std::make_pair(c, d) < std::make_pair(a, b)) key = {c, d, a, b};
-    rest_close_edges_.push_back(key);
+    const double gap = (node3(x, a) + s1 * (node3(x, b) - node3(x, a)) - node3(x, c) - s2 * (node3(x, d) - node3(x, c))).norm();
+    if (gap > rest_reach_) continue;
+    if (same || gap <= touching)
+      rest_close_edges_.push_back(edge_pair_key(a, b, c, d));
+    else
+      narrow_edges_.push_back({edge_pair_key(a, b, c, d), gap});
   }
   std::sort(rest_close_edges_.begin(), rest_close_edges_.end());
   rest_close_edges_.erase(std::unique(rest_close_edges_.begin(), rest_close_edges_.end()), rest_close_edges_.end());
+  keep_smallest_gap(narrow_edges_);
+}
+
+double ContactTopology::start_gap(int node, int triangle) const { return gap_of(narrow_faces_, std::make_pair(node, triangle)); }
+
+double ContactTopology::start_gap_edges(int a, int b, int c, int d) const {
+  return gap_of(narrow_edges_, edge_pair_key(a, b, c, d));
 }
 
 bool ContactTopology::close_at_rest(int node, int triangle) const {
@@ -79,9 +120,7 @@ bool ContactTopology::close_at_rest(int node, int triangle) const {
 }
 
 bool ContactTopology::edges_close_at_rest(int a, int b, int c, int d) const {
-  std::array<int, 4> key{std::min(a, b), std::max(a, b), std::min(c, d), std::max(c, d)};
-  if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
-  return std::binary_search(rest_close_edges_.begin(), rest_close_edges_.end(), key);
+  return std::binary_search(rest_close_edges_.begin(), rest_close_edges_.end(), edge_pair_key(a, b, c, d));
 }
 
 bool ContactTopology::in_ring(int node, int other) const {

@@ -7,11 +7,15 @@
 // A node never touches a triangle that shares a vertex with the node's 1-ring: at a sharp
 // bend such triangles lie within any contact distance without touching. With a rest reach
 // (the barrier), only incident primitives (a node and its own triangles, edges sharing a
-// node) and pairs within that reach in the mesh's rest shape (neighbours at a sharp bend) or
-// where it starts (leaflets meeting along a commissure) are excluded; pairs of two leaflets
-// by the start shape only, where the mesh gives one: a graft's rest shape is its own cut
-// shape, placed apart from the others. The other neighbours push back when
-// a fold brings them together, so a sheet cannot fold through itself. Pairs on the same
+// node) and pairs of one leaflet within that reach in the mesh's rest shape (neighbours at a
+// sharp bend) or where it starts are excluded. Pairs of two leaflets within the reach where
+// the mesh starts (leaflets meeting along a commissure, 0.004 mm apart on the distended
+// aortic root) are narrow pairs: they keep their start gap, and the barrier acts on them
+// within half of it (penalty_contact.hpp); excluded, such sides hinged through each other.
+// Those that start touching (closer than kTouchingFraction of the reach) are excluded. Pairs
+// of two leaflets are judged by the start shape only, where the mesh gives one: a graft's
+// rest shape is its own cut shape, placed apart from the others. The other neighbours push
+// back when a fold brings them together, so a sheet cannot fold through itself. Pairs on the same
 // leaflet are self-contact, pairs on different leaflets contact between leaflets; a node
 // on two leaflets (commissure corner) counts as between leaflets.
 #include <array>
@@ -26,6 +30,7 @@ namespace valve {
 struct ContactStatistics {
   long candidate_updates = 0;
   long candidate_pairs = 0;        // at the last update
+  long narrow_pairs = 0;           // pairs of two leaflets that start within the barrier's reach
   long active_pairs = 0;           // pairs exerting a force at the last evaluation
   double broad_phase_seconds = 0;
   double deepest_penetration = 0;  // mm at the last evaluation; see each model for its meaning
@@ -51,16 +56,29 @@ class ContactTopology {
   /// `rest_reach` < 0: the 1-ring rule; >= 0: incidence, and pairs within it at rest.
   ContactTopology(const TriMesh& mesh, bool self_contact, bool between_leaflets, double rest_reach = -1);
 
-  /// With a rest reach: also exclude the pairs within it at positions x (where a solve starts,
-  /// e.g. after the aortic root's distension has brought two leaflets' attachments within
-  /// it), or with `within_leaflets_only` only those of one leaflet. No-op under the 1-ring rule.
+  /// With a rest reach: the pairs within it at positions x (where a solve starts, e.g. after
+  /// the aortic root's distension has brought two leaflets' attachments within it), or with
+  /// `within_leaflets_only` only those of one leaflet. Pairs of one leaflet are excluded; pairs
+  /// of two leaflets are kept as narrow pairs (start_gap) unless they start closer than
+  /// kTouchingFraction of the reach (touching or overlapping: excluded). No-op under the
+  /// 1-ring rule.
   void exclude_close_at(const VecX& x, bool within_leaflets_only = false);
+
+  /// Pairs of two leaflets that start closer than this fraction of the rest reach are
+  /// excluded: their own gap is too small to act on.
+  static constexpr double kTouchingFraction = 1e-3;
 
   /// True when node `node` must not interact with triangle `triangle`.
   bool excluded(int node, int triangle) const;
   /// True when edge (a, b) must not interact with edge (c, d): they share a vertex or one
   /// edge's vertex is in the other's 1-ring, or the leaflet rule excludes them.
   bool excluded_edges(int a, int b, int c, int d) const;
+  /// A narrow pair's distance where it started within the rest reach (the smallest of the
+  /// starts seen); 0 for every other pair.
+  double start_gap(int node, int triangle) const;
+  double start_gap_edges(int a, int b, int c, int d) const;
+  /// Narrow pairs: (node, triangle) and edge pairs.
+  long narrow_pairs() const { return static_cast<long>(narrow_faces_.size() + narrow_edges_.size()); }
   bool on_leaflet(int node, int leaflet) const;
   /// Whether the node belongs to any triangle (isolated nodes never touch anything).
   bool has_triangles(int node) const { return !ring_[node].empty(); }
@@ -88,6 +106,8 @@ class ContactTopology {
   double rest_reach_ = -1;                               // < 0: the 1-ring rule
   std::vector<std::pair<int, int>> rest_close_faces_;    // (node, triangle) within it at rest or the start, sorted
   std::vector<std::array<int, 4>> rest_close_edges_;     // (a, b, c, d), a < b, c < d, (a, b) < (c, d), sorted
+  std::vector<std::pair<std::pair<int, int>, double>> narrow_faces_;     // (node, triangle), start gap; sorted
+  std::vector<std::pair<std::array<int, 4>, double>> narrow_edges_;      // edge key as above, start gap; sorted
   std::vector<Tri> triangles_;
   std::vector<int> leaflet_;                     // per triangle
   std::vector<std::vector<int>> node_leaflets_;  // sorted

@@ -62,9 +62,9 @@
 // (analysis/surface_intersections.hpp counts them); on the sample mitral closures 17-29
 // pairs crossed at the commissures without it, none with it. It costs pairs: the sample
 // mitral closure took 1.03 s against 0.85 s, and 0.93 s with the detection distance cut to
-// 2.5 mm (the mitral scene's setting), so it stays a scene option. Excluded pairs: see
-// ContactTopology. Every pair closer than δ acts, so the total
-// energy and force are continuous in the positions.
+// 2.5 mm (the mitral scene's setting), so it stays a scene option. Excluded and narrow pairs: see
+// ContactTopology. Every other pair closer than δ acts (a narrow pair within its own reach),
+// so the total energy and force are continuous in the positions.
 // Why not only the nearest triangle per node and leaflet: a node in a valley between two
 // faces meeting at an angle switches between them, its force turns by that angle in one
 // step, and BDF2 locks into a 2-cycle (measured on the sample mitral closure: node 210
@@ -157,9 +157,10 @@ class PenaltyContactTerm final : public ContactForceTerm {
   /// The barrier's pair Hessians projected (default) or exact; the penalty's is always its
   /// Gauss–Newton part.
   void set_jacobian_mode(JacobianMode mode) override { jacobian_mode_ = mode; }
-  /// The barrier excludes the pairs within its reach where the solve starts, as at rest: two
-  /// leaflets meeting along a commissure start 0.004 mm apart on the distended root wall, and
-  /// their collision bound would hold every step to a few thousandths of a millimetre.
+  /// The pairs within the barrier's reach where the solve starts: those of one leaflet are
+  /// excluded, as at rest; those of two leaflets (a commissure's sides, 0.004 mm apart on the
+  /// distended root wall) become narrow pairs, whose offset and reach shrink by
+  /// narrowing(start gap) so that they act only within half the gap they start with.
   void start_at(const VecX& x) override;
   void add(const State& s, VecX& f, BlockJacobian* dfdx, BlockJacobian* dfdv) const override;
   bool energy(const State& s, double& e) const override;
@@ -176,16 +177,17 @@ class PenaltyContactTerm final : public ContactForceTerm {
     Vec3 normal;
     double distance;
     bool edge = false;  // two edges (else node and triangle)
+    double scale = 1;   // the pair's narrowing (pair_scale_)
   };
   using PairVector = Eigen::Matrix<double, 12, 1>;
   using PairMatrix = Eigen::Matrix<double, 12, 12>;
   /// The pair's energy gradient over its four nodes' coordinates at positions `y`.
-  PairVector pair_gradient(bool edge, const PairVector& y) const;
+  PairVector pair_gradient(bool edge, const PairVector& y, double scale) const;
   /// The barrier pair's Hessian, projected to positive semi-definite (below) unless the
   /// Jacobian mode is exact.
   PairMatrix projected_pair_hessian(const Contact& c, const VecX& x) const;
   /// Central differences of pair_gradient, where the distance's closed-form Hessian does not hold.
-  void pair_hessian_by_differences(bool edge, const PairVector& y, PairMatrix& H) const;
+  void pair_hessian_by_differences(bool edge, const PairVector& y, double scale, PairMatrix& H) const;
   /// A candidate pair's distance d and unit direction n from the second side (triangle, or
   /// the other edge) to the first (node, or query edge); n = 0 when d vanishes. A pair that
   /// cannot be within reach is not measured: its `distance` is then a lower bound (its
@@ -213,9 +215,13 @@ class PenaltyContactTerm final : public ContactForceTerm {
   /// Pairs closer than this act: δ (penalty) or ξ + ŝ (barrier).
   double reach() const { return opt_.separation + (barrier() ? opt_.offset : 0.0); }
   bool barrier() const { return opt_.potential == ContactPotential::barrier; }
-  /// The potential per pair at distance d, its force magnitude −dE/dd and that's slope −d²E/dd².
-  double pair_energy(double d) const;
-  void pair_force(double d, double& magnitude, double& slope) const;
+  /// The potential per pair at distance d, its force magnitude −dE/dd and that's slope −d²E/dd²,
+  /// with the offset and reach times `scale` (a narrow pair's narrowing, else 1).
+  double pair_energy(double d, double scale) const;
+  void pair_force(double d, double scale, double& magnitude, double& slope) const;
+  /// A pair's scale from its start gap (ContactTopology::start_gap): 1 for 0 (not a narrow
+  /// pair), else start gap / (2 (ξ + ŝ)), at most 1.
+  double narrowing(double start_gap) const;
 
   PenaltyContactOptions opt_;
   ContactTopology topology_;
@@ -227,6 +233,7 @@ class PenaltyContactTerm final : public ContactForceTerm {
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted
   std::vector<std::pair<int, int>> edge_pairs_;        // (query edge, edge) candidates
   std::vector<double> built_distance_;                 // each candidate's distance at built_at_
+  std::vector<double> pair_scale_;                     // each candidate's narrowing (1: none)
   std::vector<std::pair<int, int>> coupled_;
   VecX built_at_;  // positions when the candidate list was built (empty: never)
   VecX contacts_x_;                 // where update_couplings last found the active contacts

@@ -21,6 +21,7 @@ nlohmann::json contact_metrics(const ContactForceTerm& c, const TriMesh& mesh, c
   nlohmann::json j = {{"detection_mm", c.detection_distance()},
                       {"candidate_updates", st.candidate_updates},
                       {"candidate_pairs", st.candidate_pairs},
+                      {"narrow_pairs", st.narrow_pairs},
                       {"active_pairs", st.active_pairs},
                       {"deepest_penetration_mm", st.deepest_penetration},
                       {"closest_distance_mm", st.closest_distance},
