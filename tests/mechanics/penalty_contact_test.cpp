@@ -260,18 +260,27 @@ TEST_CASE("barrier contact: two leaflets that start within the reach act within 
   told.start_at(start);
   told.update_couplings(start);
   untold.update_couplings(start);
-  CHECK(told.statistics().narrow_pairs > 0);
+  CHECK(told.statistics().narrow_pairs == 1);  // node 3 over the other sheet's triangle
   CHECK(untold.statistics().narrow_pairs == 0);
   CHECK(forces(untold, start).norm() > 0);
   CHECK(forces(told, start).norm() == 0);
-  VecX toward = VecX::Zero(18);
-  toward[3 * 3 + 2] = -0.04;  // node 3 toward the other sheet's face, to 0.06 mm
-  CHECK(told.step_ratio(start, toward) <= 1);
+  // The reach is half the start gap: idle at 0.06 mm, pushing at 0.04 mm.
+  const VecX beyond_half = flatten(two_sheets(0.06).points), within_half = flatten(two_sheets(0.04).points);
+  told.update_couplings(beyond_half);
+  CHECK(forces(told, beyond_half).norm() == 0);
+  told.update_couplings(within_half);
+  CHECK(forces(told, within_half).norm() > 0);
   const VecX closer = flatten(two_sheets(0.03).points);
   told.update_couplings(closer);
   const VecX pushed = forces(told, closer);
   CHECK(pushed[3 * 3 + 2] > 0);  // node 3 pushed back up, away from the face below it
   CHECK(pushed.sum() == Approx(0).margin(1e-12 * pushed.norm()));  // with its reaction
+  // The force is the narrowed energy's gradient (central differences along node 3's z).
+  const double h = 1e-7;
+  VecX up = closer, down = closer;
+  up[3 * 3 + 2] += h;
+  down[3 * 3 + 2] -= h;
+  CHECK(pushed[3 * 3 + 2] == Approx(-(energy_of(told, up) - energy_of(told, down)) / (2 * h)).epsilon(1e-5));
   told.update_couplings(start);
   VecX through = VecX::Zero(18);
   through[3 * 3 + 2] = -0.2;  // to 0.1 mm past the face
@@ -284,18 +293,44 @@ TEST_CASE("barrier contact: two leaflets that start within the reach act within 
   CHECK(forces(far_start, start).norm() > 0);
 }
 
+TEST_CASE("barrier contact: a narrow pair's offset shrinks with its reach", "[mechanics][penalty_contact]") {
+  // ξ = 0.02, ŝ = 0.25 mm, the pair starting 0.1 mm apart: both shrink by 0.1 / (2 · 0.27), so
+  // the pair acts below 0.05 mm and keeps 0.0037 mm (its own offset), not 0.02 mm.
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.offset = 0.02;
+  opt.separation = 0.25;
+  PenaltyContactTerm c(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  const VecX start = flatten(two_sheets(0.1).points);
+  c.start_at(start);
+  const double offset = 0.02 * 0.1 / (2 * 0.27);
+  for (double gap : {0.06, 0.03, 0.01, 0.005}) {
+    const VecX x = flatten(two_sheets(gap).points);
+    c.update_couplings(x);
+    CHECK((forces(c, x).norm() > 0) == (gap < 0.05));
+    CHECK(std::isfinite(energy_of(c, x)));
+  }
+  const VecX inside = flatten(two_sheets(0.9 * offset).points);
+  c.update_couplings(inside);
+  CHECK(std::isinf(energy_of(c, inside)));
+  c.update_couplings(start);
+  VecX to_offset = VecX::Zero(18);
+  to_offset[3 * 3 + 2] = -(0.1 - offset);  // node 3 down to the narrow offset
+  CHECK(c.step_ratio(start, to_offset) > 1);
+}
+
 TEST_CASE("barrier contact: pairs that start touching or within one leaflet are excluded", "[mechanics][penalty_contact]") {
   // Two leaflets starting closer than a thousandth of the reach (0.25 µm here) have no gap of
   // their own to keep; two parts of one leaflet within the reach are neighbours at a bend.
   PenaltyContactOptions opt;
   opt.potential = ContactPotential::barrier;
   opt.separation = 0.25;
-  const VecX touching = flatten(two_sheets(1e-4).points);
+  const VecX touching = flatten(two_sheets(1e-4).points), closer = flatten(two_sheets(1e-5).points);
   PenaltyContactTerm two_leaflets(two_sheets(1.0), opt, std::vector<char>(18, 0));
   two_leaflets.start_at(touching);
-  two_leaflets.update_couplings(touching);
+  two_leaflets.update_couplings(closer);
   CHECK(two_leaflets.statistics().narrow_pairs == 0);
-  CHECK(forces(two_leaflets, touching).norm() == 0);
+  CHECK(forces(two_leaflets, closer).norm() == 0);  // a narrow pair would push here
   TriMesh one = two_sheets(1.0);
   one.leaflet = {0, 0};
   PenaltyContactTerm within(one, opt, std::vector<char>(18, 0));

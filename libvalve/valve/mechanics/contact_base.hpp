@@ -10,9 +10,11 @@
 // node) and pairs of one leaflet within that reach in the mesh's rest shape (neighbours at a
 // sharp bend) or where it starts are excluded. Pairs of two leaflets within the reach where
 // the mesh starts (leaflets meeting along a commissure, 0.004 mm apart on the distended
-// aortic root) are narrow pairs: they keep their start gap, and the barrier acts on them
-// within half of it (penalty_contact.hpp); excluded, such sides hinged through each other.
-// Those that start touching (closer than kTouchingFraction of the reach) are excluded. Pairs
+// aortic root) are narrow pairs: their start gap d₀ is remembered (the smallest distance seen
+// where a solve may start: the rest shape when the mesh gives no start shape, and each
+// start_at), and the barrier acts on them within half of it (penalty_contact.hpp); excluded,
+// such sides hinged through each other. Those that start touching (closer than
+// kTouchingFraction of the reach) are excluded. Pairs
 // of two leaflets are judged by the start shape only, where the mesh gives one: a graft's
 // rest shape is its own cut shape, placed apart from the others. The other neighbours push
 // back when a fold brings them together, so a sheet cannot fold through itself. Pairs on the same
@@ -31,6 +33,7 @@ struct ContactStatistics {
   long candidate_updates = 0;
   long candidate_pairs = 0;        // at the last update
   long narrow_pairs = 0;           // pairs of two leaflets that start within the barrier's reach
+                                   // (ContactTopology::narrow_pairs)
   long active_pairs = 0;           // pairs exerting a force at the last evaluation
   double broad_phase_seconds = 0;
   double deepest_penetration = 0;  // mm at the last evaluation; see each model for its meaning
@@ -77,7 +80,8 @@ class ContactTopology {
   /// starts seen); 0 for every other pair.
   double start_gap(int node, int triangle) const;
   double start_gap_edges(int a, int b, int c, int d) const;
-  /// Narrow pairs: (node, triangle) and edge pairs.
+  /// Narrow pairs recorded, (node, triangle) and edge pairs; those whose nodes are all held,
+  /// or that the leaflet rule or a touching start excludes, among them.
   long narrow_pairs() const { return static_cast<long>(narrow_faces_.size() + narrow_edges_.size()); }
   bool on_leaflet(int node, int leaflet) const;
   /// Whether the node belongs to any triangle (isolated nodes never touch anything).

@@ -55,7 +55,11 @@ double PenaltyContactTerm::narrowing(double start_gap) const {
 
 void PenaltyContactTerm::start_at(const VecX& x) {
   topology_.exclude_close_at(x);
-  built_at_.resize(0);  // the candidate list honours the new exclusions from its next build
+  // The candidate list, its gaps and the contacts found honour the new exclusions and narrow
+  // pairs from the next build on.
+  built_at_.resize(0);
+  contacts_x_.resize(0);
+  pair_gaps_.clear();
 }
 
 void PenaltyContactTerm::couplings(std::vector<std::pair<int, int>>& pairs) const {
@@ -325,7 +329,7 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   for (int i = 0; i < dx.size() / 3; ++i)
     ratio = std::max(ratio, ((node3(x, i) - node3(built_at_, i)).norm() + dx.segment<3>(3 * i).norm()) / (2 * verlet_step()));
   // Every candidate pair closes by less than 0.8 max(δ, d); with the barrier, by less than
-  // 0.8 (d − ξ), so that none reaches the offset.
+  // 0.8 (d − ξ), so that none reaches the offset (a narrow pair's own, scaled ξ).
   const double delta = opt_.separation;
   // A pair closes by at most twice the largest node step: one with room for that cannot raise
   // the ratio above what it already is, and is not looked at further.

@@ -51,8 +51,8 @@ TriMesh generate_three_leaflet_valve(const LeafletOptions& opt);
 /// straight free edge. Three leaflets meet at the commissures, wrapped into the cylinder of
 /// diameter d, free edges at z = 0 for native leaflets, normals toward the axis. They share no
 /// nodes: w = 1.047 d falls short of a third of the circumference (π d / 3), so neighbouring
-/// sides lie 2 e-4 d apart (0.004 mm at 20 mm), and contact leaves such pairs out
-/// (contact_base.hpp).
+/// sides lie 2 e-4 d apart (0.004 mm at 20 mm), and the barrier contact acts on such pairs
+/// within half that gap (narrow pairs, contact_base.hpp).
 ///
 /// Grafts: leaflet k's flat shape may be scaled by width_scale[k] and height_scale[k]. Its
 /// nadir stays on the root's; a taller graft reaches higher up the commissures (seed 4.4).
