@@ -235,8 +235,17 @@ void limit_blas_threads_unless_set() {
   // Looked up at run time: Debian's BLAS is chosen by alternatives (OpenBLAS, reference
   // BLAS, BLIS), and only OpenBLAS has this entry point; elsewhere this does nothing.
   using SetThreads = void (*)(int);
+  using Shutdown = int (*)();
   if (!std::getenv("OPENBLAS_NUM_THREADS"))
-    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) set(1);
+    if (auto set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"))) {
+      set(1);
+      // The worker threads OpenBLAS started when it was loaded keep spinning (sched_yield) for
+      // its thread timeout before they sleep, whether or not BLAS is ever called: about 0.1 s
+      // of a core per process, which a second job on a 2-core machine loses (measured on the
+      // sample mitral closure: 1.09 s of CPU against 0.99 s with OPENBLAS_NUM_THREADS=1, the
+      // same wall time). With one thread BLAS runs on the caller and needs no workers.
+      if (auto shutdown = reinterpret_cast<Shutdown>(dlsym(RTLD_DEFAULT, "blas_thread_shutdown_"))) shutdown();
+    }
   // CHOLMOD's supernodal factorization (SuiteSparse 5.12) runs small loops per supernode in
   // OpenMP regions of a fixed 4 threads, whatever OMP_NUM_THREADS says (measured: with it at 1
   // the x16 closure still spent 10 s in the kernel). With no active level allowed every region

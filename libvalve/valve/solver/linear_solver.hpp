@@ -89,8 +89,8 @@ class LinearSolver {
   LinearSolverStats stats_;
 };
 
-/// Keeps OpenBLAS (behind CHOLMOD supernodal and UMFPACK) to one thread unless the user set
-/// OPENBLAS_NUM_THREADS, and CHOLMOD's OpenMP regions to the calling thread unless the user
+/// Keeps OpenBLAS (behind CHOLMOD supernodal and UMFPACK) to one thread, its load-time workers
+/// stopped, unless the user set OPENBLAS_NUM_THREADS, and CHOLMOD's OpenMP regions to the calling thread unless the user
 /// set OMP_MAX_ACTIVE_LEVELS. Why: our systems are small (10^3-10^4
 /// unknowns) and factorized thousands of times; on the 2-core machine an unpinned mitral
 /// contact closure spent 21 s of a 90 s run in the kernel (BLAS threads spinning and waking),
