@@ -43,8 +43,7 @@ void Voxelizer::add_sheet(const MatX3& points, const std::vector<Tri>& triangles
   for (const Tri& t : triangles) {
     const Vec3 a = points.row(t[0]), b = points.row(t[1]), c = points.row(t[2]);
     for_voxels_near(a.cwiseMin(b).cwiseMin(c), a.cwiseMax(b).cwiseMax(c), margin, [&](std::size_t v, const Vec3& p) {
-      const Vec3 w = closest_point_weights(p, a, b, c);
-      const double d = (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
+      const double d = point_triangle_distance(p, a, b, c);
       const float f = static_cast<float>(std::clamp(0.5 - (d - half) / ramp_width_, 0.0, 1.0));
       occupancy_[v] = std::max(occupancy_[v], f);
     });

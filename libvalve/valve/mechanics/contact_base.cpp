@@ -77,9 +77,7 @@ void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only)
     const bool same = same_leaflet(i, t);
     if (within_leaflets_only && !same) continue;
     const Tri& tri = triangles_[t];
-    const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
-    const Vec3 w = closest_point_weights(p, a, b, c);
-    const double d = (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
+    const double d = point_triangle_distance(node3(x, i), node3(x, tri[0]), node3(x, tri[1]), node3(x, tri[2]));
     if (d > rest_reach_) continue;
     if (same || d <= touching)
       rest_close_faces_.emplace_back(i, t);
@@ -96,8 +94,7 @@ void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only)
     const auto [c, d] = edges_[e2];
     const bool same = same_leaflet_edges(a, b, c, d);
     if (within_leaflets_only && !same) continue;
-    const auto [s1, s2] = closest_segment_parameters(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
-    const double gap = (node3(x, a) + s1 * (node3(x, b) - node3(x, a)) - node3(x, c) - s2 * (node3(x, d) - node3(x, c))).norm();
+    const double gap = segment_segment_distance(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
     if (gap > rest_reach_) continue;
     if (same || gap <= touching)
       rest_close_edges_.push_back(edge_pair_key(a, b, c, d));

@@ -120,9 +120,7 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
     const auto& [i, t] = pair;
     const Tri& tri = tris[t];
     if (topology_.excluded(i, t) || all_constrained({i, tri[0], tri[1], tri[2]})) return -1.0;
-    const Vec3 p = node3(x, i), a = node3(x, tri[0]), b = node3(x, tri[1]), c = node3(x, tri[2]);
-    const Vec3 w = closest_point_weights(p, a, b, c);
-    const double d = (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
+    const double d = point_triangle_distance(node3(x, i), node3(x, tri[0]), node3(x, tri[1]), node3(x, tri[2]));
     return d <= detection_ ? d : -1.0;
   });
   for (size_t k = 0; k < face_candidates.size(); ++k)
@@ -138,9 +136,7 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
       const auto [a, b] = edges[pair.first];
       const auto [c, d] = edges[pair.second];
       if (topology_.excluded_edges(a, b, c, d) || all_constrained({a, b, c, d})) return -1.0;
-      const Vec3 xa = node3(x, a), xb = node3(x, b), xc = node3(x, c), xd = node3(x, d);
-      const auto [s, u] = closest_segment_parameters(xa, xb, xc, xd);
-      const double distance = (xa + s * (xb - xa) - xc - u * (xd - xc)).norm();
+      const double distance = segment_segment_distance(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
       return distance <= detection_ ? distance : -1.0;
     });
     for (size_t k = 0; k < edge_candidates.size(); ++k)  // after every face pair's

@@ -31,4 +31,15 @@ inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b
 /// Parameters (s, t) of the closest points a + s (b − a), c + t (d − c) of two segments.
 std::pair<double, double> closest_segment_parameters(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d);
 
+/// Distance from p to triangle (a, b, c). Inline: contact's candidate lists call it per pair.
+inline double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  const Vec3 w = closest_point_weights(p, a, b, c);
+  return (p - (w[0] * a + w[1] * b + w[2] * c)).norm();
+}
+/// Distance between the segments (a, b) and (c, d).
+inline double segment_segment_distance(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  const auto [s, t] = closest_segment_parameters(a, b, c, d);
+  return (a + s * (b - a) - c - t * (d - c)).norm();
+}
+
 }  // namespace valve
