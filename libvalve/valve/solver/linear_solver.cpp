@@ -15,6 +15,7 @@
 
 #include "valve/core/error.hpp"
 #include "valve/solver/constrained_system.hpp"
+#include "valve/solver/gmres.hpp"
 #include "valve/solver/node_block_ordering.hpp"
 
 namespace valve {
@@ -39,6 +40,7 @@ void silence(Eigen::CholmodSimplicialLDLT<M, UpLo>& d) {
 
 using NodeBlockLdlt = Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower, NodeBlockAmdOrdering<SparseMatrix::StorageIndex>>;
 using NodeBlockLlt = Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower, NodeBlockAmdOrdering<SparseMatrix::StorageIndex>>;
+using CholmodLlt = Eigen::CholmodSupernodalLLT<SparseMatrix>;
 
 // The pattern a decomposition was last analysed for. Contact grows the Jacobian pattern
 // during a solve, so the symbolic analysis is redone only when the pattern changes.
@@ -185,20 +187,31 @@ class SymmetricPartPreconditioner {
   const Factorization* factorization = nullptr;
 };
 
-// The whole (non-symmetric) system by BiCGStab, preconditioned by a factorization of its
-// symmetric part (see LinearSolverType::ldlt_bicgstab and cholmod_bicgstab).
+enum class Krylov { bicgstab, gmres };
+
+// Restart length of GMRES: the sample mitral closure's directions took 872 steps in all with
+// 20, 824 with 30 and 824 with 40, so a longer basis (kept as 31 vectors of the system's size)
+// buys nothing.
+constexpr int kGmresRestart = 30;
+
+// The whole (non-symmetric) system by BiCGStab or GMRES, preconditioned by a factorization of
+// its symmetric part (see LinearSolverType::ldlt_bicgstab, llt_gmres and the others).
 template <class Factorization>
-class SymmetricPartBiCGStab final : public LinearSolver {
+class SymmetricPartKrylov final : public LinearSolver {
  public:
-  SymmetricPartBiCGStab(std::string name, double tol, int max_it) : name_(std::move(name)) {
+  SymmetricPartKrylov(std::string name, Krylov method, double tol, int max_it)
+      : name_(std::move(name)), method_(method), tol_(tol), max_it_(max_it) {
     silence(factorization_);
-    it_.setTolerance(tol);
-    it_.setMaxIterations(max_it);
-    it_.preconditioner().factorization = &factorization_;
+    bicgstab_.setTolerance(tol);
+    bicgstab_.setMaxIterations(max_it);
+    bicgstab_.preconditioner().factorization = &factorization_;
   }
   bool needs_symmetric() const override { return false; }
   std::string name() const override { return name_; }
-  void set_tolerance(double tol) override { it_.setTolerance(tol); }
+  void set_tolerance(double tol) override {
+    tol_ = tol;
+    bicgstab_.setTolerance(tol);
+  }
   bool factorize(const SparseMatrix& A) override { return factorize_preconditioned(A, A); }
   bool takes_preconditioner() const override { return true; }
   bool factorize_preconditioned(const SparseMatrix& A, const SparseMatrix& preconditioner) override {
@@ -208,24 +221,43 @@ class SymmetricPartBiCGStab final : public LinearSolver {
     return set_operator(A);
   }
   bool set_operator(const SparseMatrix& A) override {
-    if (ok_) it_.compute(nonzeros_.of(A));
+    if (ok_) {
+      operator_ = &nonzeros_.of(A);
+      if (method_ == Krylov::bicgstab) bicgstab_.compute(*operator_);
+    }
     return ok_;
   }
   bool solve(const VecX& b, VecX& x) override {
     if (!ok_) return false;
     const auto t0 = std::chrono::steady_clock::now();
     // Start from the symmetric part's solution: the skew part is a small correction.
-    x = it_.solveWithGuess(b, factorization_.solve(b));
-    return book_krylov_solve(it_, x, t0, stats_);
+    if (method_ == Krylov::bicgstab) {
+      x = bicgstab_.solveWithGuess(b, factorization_.solve(b));
+      return book_krylov_solve(bicgstab_, x, t0, stats_);
+    }
+    x = factorization_.solve(b);
+    const GmresResult r = gmres([&](const VecX& v, VecX& out) { out.noalias() = *operator_ * v; },
+                                [&](const VecX& v, VecX& out) { out = factorization_.solve(v); }, b, x, tol_, max_it_,
+                                kGmresRestart);
+    ++stats_.solves;
+    stats_.iterations += r.iterations;
+    stats_.solve_seconds += since(t0);
+    const bool good = r.converged && x.allFinite();
+    if (!good) ++stats_.failures;
+    return good;
   }
 
  private:
   std::string name_;
+  Krylov method_;
+  double tol_;
+  int max_it_;
   Factorization factorization_;
   SymmetricPart symmetric_;
   StoredZerosDropped symmetric_nonzeros_, nonzeros_;
   AnalysedPattern pattern_;
-  Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner<Factorization>> it_;
+  const SparseMatrix* operator_ = nullptr;  // held by nonzeros_
+  Eigen::BiCGSTAB<SparseMatrix, SymmetricPartPreconditioner<Factorization>> bicgstab_;
   bool ok_ = false;
 };
 
@@ -261,7 +293,8 @@ const LinearSolverType kAllTypes[] = {LinearSolverType::automatic, LinearSolverT
                                       LinearSolverType::umfpack, LinearSolverType::klu,
                                       LinearSolverType::cg, LinearSolverType::bicgstab, LinearSolverType::lu,
                                       LinearSolverType::ldlt_bicgstab, LinearSolverType::llt_bicgstab,
-                                      LinearSolverType::cholmod_bicgstab};
+                                      LinearSolverType::cholmod_bicgstab, LinearSolverType::ldlt_gmres,
+                                      LinearSolverType::llt_gmres, LinearSolverType::cholmod_gmres};
 }  // namespace
 
 const std::vector<std::string>& linear_solver_names() {
@@ -295,6 +328,9 @@ std::string to_string(LinearSolverType t) {
     case LinearSolverType::ldlt_bicgstab: return "ldlt_bicgstab";
     case LinearSolverType::llt_bicgstab: return "llt_bicgstab";
     case LinearSolverType::cholmod_bicgstab: return "cholmod_bicgstab";
+    case LinearSolverType::ldlt_gmres: return "ldlt_gmres";
+    case LinearSolverType::llt_gmres: return "llt_gmres";
+    case LinearSolverType::cholmod_gmres: return "cholmod_gmres";
   }
   return "?";
 }
@@ -327,12 +363,17 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverType type, double t
       return std::make_unique<IterativeSolver<Eigen::BiCGSTAB<SparseMatrix, Eigen::IncompleteLUT<double>>>>(
           "bicgstab", false, tol, max_it);
     case LinearSolverType::ldlt_bicgstab:
-      return std::make_unique<SymmetricPartBiCGStab<NodeBlockLdlt>>("ldlt_bicgstab", tol, max_it);
+      return std::make_unique<SymmetricPartKrylov<NodeBlockLdlt>>("ldlt_bicgstab", Krylov::bicgstab, tol, max_it);
     case LinearSolverType::llt_bicgstab:
-      return std::make_unique<SymmetricPartBiCGStab<NodeBlockLlt>>("llt_bicgstab", tol, max_it);
+      return std::make_unique<SymmetricPartKrylov<NodeBlockLlt>>("llt_bicgstab", Krylov::bicgstab, tol, max_it);
     case LinearSolverType::cholmod_bicgstab:
-      return std::make_unique<SymmetricPartBiCGStab<Eigen::CholmodSupernodalLLT<SparseMatrix>>>("cholmod_bicgstab", tol,
-                                                                                               max_it);
+      return std::make_unique<SymmetricPartKrylov<CholmodLlt>>("cholmod_bicgstab", Krylov::bicgstab, tol, max_it);
+    case LinearSolverType::ldlt_gmres:
+      return std::make_unique<SymmetricPartKrylov<NodeBlockLdlt>>("ldlt_gmres", Krylov::gmres, tol, max_it);
+    case LinearSolverType::llt_gmres:
+      return std::make_unique<SymmetricPartKrylov<NodeBlockLlt>>("llt_gmres", Krylov::gmres, tol, max_it);
+    case LinearSolverType::cholmod_gmres:
+      return std::make_unique<SymmetricPartKrylov<CholmodLlt>>("cholmod_gmres", Krylov::gmres, tol, max_it);
   }
   throw InputError("linear solver: unknown type");
 }

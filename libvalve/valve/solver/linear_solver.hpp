@@ -1,8 +1,8 @@
 #pragma once
 // Linear solvers behind one interface: CHOLMOD supernodal Cholesky and simplicial LDLᵀ,
 // UMFPACK and KLU sparse LU (SuiteSparse), simplicial LDLᵀ, preconditioned conjugate
-// gradients, BiCGStab and sparse LU (Eigen), and BiCGStab preconditioned by the LDLᵀ of the
-// system's symmetric part (ldlt_bicgstab).
+// gradients, BiCGStab and sparse LU (Eigen), and BiCGStab or GMRES preconditioned by a
+// factorization of the system's symmetric part (ldlt_bicgstab, llt_gmres, ...).
 // The symbolic analysis is done once per pattern; factorize() is called per matrix.
 #include <memory>
 #include <string>
@@ -13,7 +13,9 @@
 namespace valve {
 
 enum class LinearSolverType {
-  automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu, ldlt_bicgstab, llt_bicgstab, cholmod_bicgstab
+  automatic, cholmod_llt, cholmod_ldlt, ldlt, umfpack, klu, cg, bicgstab, lu,
+  // The whole system by a Krylov method on a factorization of its symmetric part.
+  ldlt_bicgstab, llt_bicgstab, cholmod_bicgstab, ldlt_gmres, llt_gmres, cholmod_gmres
 };
 
 /// The names parse_linear_solver() accepts, as scene files spell them.
@@ -66,7 +68,7 @@ class LinearSolver {
   virtual bool factorize(const SparseMatrix& A) = 0;
   /// Solves A x = b with the last factorized A; false on failure.
   virtual bool solve(const VecX& b, VecX& x) = 0;
-  /// Krylov solvers on a factorization (ldlt_bicgstab, cholmod_bicgstab): factorizes the
+  /// Krylov solvers on a factorization (ldlt_bicgstab, cholmod_gmres, ...): factorizes the
   /// symmetric part of `preconditioner` and solves with A; others return false. Newton then
   /// takes an indefinite A (a Cholesky cannot factorize it) on a definite preconditioner.
   virtual bool factorize_preconditioned(const SparseMatrix& A, const SparseMatrix& preconditioner) {

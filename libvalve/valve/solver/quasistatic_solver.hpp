@@ -37,10 +37,10 @@
 // Linear algebra: the whole system (with the pressure's non-symmetric stiffness: the last
 // iterations are then Newton's on f = 0, and far from equilibrium, where leaflets swing
 // through large rotations, the symmetric part alone gave directions that did not converge on
-// the aortic valve) by BiCGStab preconditioned with a Cholesky of its symmetric part, one per
+// the aortic valve) by GMRES preconditioned with a Cholesky of its symmetric part, one per
 // direction: Eigen's simplicial LLᵀ below 6,000 unknowns, CHOLMOD's supernodal one above.
 // * With the contact Hessians projected. Exact ones may make the matrix indefinite, so they
-//   enter as BiCGStab's operator only, on the projected Jacobian's Cholesky; where that
+//   enter as GMRES's operator only, on the projected Jacobian's Cholesky; where that
 //   direction fails, the projected direction is solved on the same factorisation (no second
 //   factorisation for the retry).
 // * A Cholesky refuses a symmetric part that is not positive definite (the pressure's stiffness
@@ -106,13 +106,14 @@ class ExactHessianSchedule {
 ///   After a step that did not lower the residual the next direction is solved to the floor
 ///   (ForcingTerm::next).
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
-///   27.9 s against 31.1 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
-///   64-190 factorizations against 76-139 fixed (the Newton path, not the solves, sets these).
-///   Why it is not the default: a direction solved to 1e-2 differs from the exact one by that
-///   much, and where BiCGStab stops is a discrete decision, so starts 1e-6 mm apart follow
-///   paths that part by 1e-2 and land on neighbouring equilibria: on the normal aortic valve
-///   9 of 40 such starts moved the closed shape by more than the 0.05 mm (mean over nodes) the
-///   solver is held to, against none fixed.
+///   30.1 s against 30.9 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
+///   75-104 factorizations against 96-138 fixed (the Newton path, not the solves, sets these).
+///   Why it is not the default: the saving is small with GMRES's directions, and a direction
+///   solved to 1e-2 differs from the exact one by that much, so the path is another than exact
+///   Newton's: the normal aortic valve's forty perturbed starts land on one shape, but not
+///   `fixed`'s (band heights up to 0.04 mm apart); with BiCGStab's directions, where the solve
+///   stops being a discrete decision, 9 of the 40 moved by more than the 0.05 mm (mean over
+///   nodes) the solver is held to, against none fixed.
 enum class NewtonForcing { adaptive, fixed };
 
 /// The forcing sequence η_k of NewtonForcing::adaptive for one load increment.
@@ -189,8 +190,8 @@ struct QuasistaticOptions {
   double initial_increment = 1.0;     // first Δλ as a fraction of the load to apply
   double min_increment = 1e-4;
   double max_wall_seconds = 600;
-  LinearSolverType linear_solver = LinearSolverType::automatic;  // llt_bicgstab; above 6,000 unknowns cholmod_bicgstab
-  double iterative_tolerance = 1e-6;  // BiCGStab's relative residual (adaptive: its floor)
+  LinearSolverType linear_solver = LinearSolverType::automatic;  // llt_gmres; above 6,000 unknowns cholmod_gmres
+  double iterative_tolerance = 1e-6;  // the Krylov solve's relative residual (adaptive: its floor)
   NewtonForcing forcing = NewtonForcing::fixed;
 };
 
