@@ -110,6 +110,30 @@ TEST_CASE("GMRES solves an indefinite system, starts from the guess it is given,
   CHECK(short_of_steps.relative_residual == Approx((b - A * x).norm() / b.norm()).epsilon(1e-9));
 }
 
+TEST_CASE("GMRES ends unconverged, x unchanged, where no step can lower the residual", "[solver]") {
+  // A singular system with the right-hand side partly outside its range: the first Krylov
+  // vector maps to zero, so the cycle has no column to solve with.
+  MatrixXd A = MatrixXd::Zero(3, 3);
+  A(1, 1) = 2.0, A(2, 2) = 3.0;
+  const VectorXd b = VectorXd::Unit(3, 0);
+  VectorXd x = VectorXd::Zero(3);
+  const GmresResult r = gmres(Counted{A}, identity, b, x, 1e-10, 100, 30);
+  CHECK_FALSE(r.converged);
+  CHECK(r.iterations == 1);
+  CHECK(x.isZero());
+  CHECK(r.relative_residual == Approx(1.0));
+
+  // Partly in the range: the reachable part is solved, then the cycle that cannot go further ends it.
+  VectorXd b2(3);
+  b2 << 1.0, 2.0, 3.0;
+  x.setZero();
+  const GmresResult partly = gmres(Counted{A}, identity, b2, x, 1e-10, 100, 30);
+  CHECK_FALSE(partly.converged);
+  CHECK(x.allFinite());
+  CHECK(partly.relative_residual == Approx(1.0 / b2.norm()).epsilon(1e-8));
+  CHECK(partly.relative_residual == Approx((b2 - A * x).norm() / b2.norm()).epsilon(1e-12));
+}
+
 TEST_CASE("GMRES returns zero for a zero right-hand side and stops on a non-finite product", "[solver]") {
   const int n = 10;
   const MatrixXd A = non_symmetric(n, 0.3, 1);
@@ -126,4 +150,24 @@ TEST_CASE("GMRES returns zero for a zero right-hand side and stops on a non-fini
   const GmresResult r = gmres(broken, identity, VectorXd::Ones(n), x, 1e-10, 100, 30);
   CHECK_FALSE(r.converged);
   CHECK(r.iterations <= 100);
+
+  // A product that turns non-finite inside a cycle: stopped there, x still the start.
+  int products = 0;
+  const auto breaks_later = [&](const VectorXd& v, VectorXd& out) {
+    out = A * v;
+    if (++products > 3) out[0] = std::numeric_limits<double>::infinity();
+  };
+  x.setZero();
+  const GmresResult later = gmres(breaks_later, identity, VectorXd::Ones(n), x, 1e-14, 100, 30);
+  CHECK_FALSE(later.converged);
+  CHECK(later.iterations == 3);
+  CHECK(x.isZero());
+
+  // A non-finite right-hand side: not converged, nothing done.
+  VectorXd nan_b = VectorXd::Ones(n);
+  nan_b[2] = std::numeric_limits<double>::quiet_NaN();
+  x.setOnes();
+  const GmresResult nan_rhs = gmres(Counted{A}, identity, nan_b, x, 1e-10, 100, 30);
+  CHECK_FALSE(nan_rhs.converged);
+  CHECK(nan_rhs.iterations == 0);
 }

@@ -121,9 +121,9 @@ TEST_CASE("BiCGStab or GMRES on a Cholesky solves an indefinite system on a defi
 }
 
 TEST_CASE("GMRES on the symmetric part's Cholesky needs fewer preconditioner solves than BiCGStab", "[solver]") {
-  // BiCGStab applies the preconditioner twice per iteration, GMRES once per step (and once more
-  // per restart); on a strongly skew system GMRES needs fewer in all. Both stop at the same
-  // true relative residual.
+  // BiCGStab applies the preconditioner twice per iteration, GMRES once per step and once more
+  // per cycle (30 steps here are one cycle); both once for their start. On a strongly skew
+  // system GMRES needs fewer in all. Both stop at the same true relative residual.
   const int n = 300;
   const SparseMatrix A = bdf2_like(n, 2.0);
   const VecX b = VecX::LinSpaced(n, -1, 2);
@@ -132,13 +132,14 @@ TEST_CASE("GMRES on the symmetric part's Cholesky needs fewer preconditioner sol
     VecX x;
     REQUIRE(s->factorize(A));
     REQUIRE(s->solve(b, x));
-    CHECK(relative_residual(A, x, b) < 1e-10);
+    CHECK(relative_residual(A, x, b) < 1e-9);  // BiCGStab stops on its recurred residual
     return s->stats().iterations;
   };
   const long bicgstab = solves(LinearSolverType::llt_bicgstab), gmres = solves(LinearSolverType::llt_gmres);
   INFO("BiCGStab " << bicgstab << " iterations, GMRES " << gmres << " steps");
   CHECK(gmres > 2);
-  CHECK(gmres < 2 * bicgstab);
+  CHECK(gmres <= 30);
+  CHECK(1 + gmres + 1 < 1 + 2 * bicgstab);
 }
 
 TEST_CASE("automatic linear solver: the whole system for small BDF2 systems, Cholesky for large", "[solver]") {

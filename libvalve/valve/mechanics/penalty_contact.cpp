@@ -332,10 +332,15 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   // A pair closes by at most twice the largest node step: one with room for that cannot raise
   // the ratio, and is not looked at further.
   const double largest_step = largest_node_norm(dx);
-  // A pair's plane bound: how far it closes over 0.8 of its room; 0 where it has room enough
-  // not to exceed `floor`. A pair recorded by a lower bound of its gap that leaves room enough
-  // has more; one that does not is measured where its gap was recorded (contacts_x_).
+  // A pair's plane bound: how far it closes over 0.8 of its room. A pair recorded by a lower
+  // bound of its gap that leaves room enough not to exceed `floor` has more, and is passed over
+  // (plane 0); one that does not is measured where its gap was recorded (contacts_x_).
+  struct Closing {
+    size_t pair;
+    double plane = 0, recorded_room = 0, room = 0;
+  };
   auto plane_bound = [&](size_t k, double floor) {
+    Closing c{k};
     int nodes[4];
     const int first_side = pair_nodes(k, nodes) ? 2 : 1;
     const double offset = pair_scale_[k] * opt_.offset;
@@ -343,29 +348,34 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
       return barrier() ? std::max(g.distance - offset, 1e-300) : std::max(delta, g.distance);
     };
     const PairGap& recorded = pair_gaps_[k];
-    if (2 * largest_step <= floor * 0.8 * room_of(recorded)) return 0.0;
+    c.recorded_room = room_of(recorded);
+    if (2 * largest_step <= floor * 0.8 * c.recorded_room) return c;
     const PairGap g = recorded.lower_bound ? measured_gap(k, contacts_x_) : recorded;
+    c.room = room_of(g);
     double closing = 0;
     for (int a = 0; a < first_side; ++a)
       for (int b = first_side; b < 4; ++b) {
         const Vec3 relative = node3(dx, nodes[b]) - node3(dx, nodes[a]);
         closing = std::max(closing, g.normal.isZero() ? relative.norm() : g.normal.dot(relative));
       }
-    return closing / (0.8 * room_of(g));
+    c.plane = closing / (0.8 * c.room);
+    return c;
   };
-  // Raises `ratio` to pair k's where its plane bound exceeds it. With the barrier the pair is
-  // then measured along the step and on past it (additive CCD, keeping the same 0.2 of its
-  // gap): its ratio is the smaller of the two, the step's share of how far the pair may go.
-  auto raise = [&](size_t k, double plane, double& ratio) {
-    if (plane <= ratio) return;
-    double pair_ratio = plane;
+  // Raises `ratio` to the pair's where it has too little room for the largest step (twice it:
+  // both sides move) and its plane bound exceeds the ratio. With the barrier the pair is then
+  // measured along the step and on past it (additive CCD, keeping the same 0.2 of its gap): its
+  // ratio is the smaller of the two, the step's share of how far the pair may go.
+  auto raise = [&](const Closing& c, double& ratio) {
+    if (2 * largest_step <= ratio * 0.8 * c.recorded_room || 2 * largest_step <= ratio * 0.8 * c.room) return;
+    if (c.plane <= ratio) return;
+    double pair_ratio = c.plane;
     if (barrier()) {
       int nodes[4];
-      const bool edge = pair_nodes(k, nodes);
+      const bool edge = pair_nodes(c.pair, nodes);
       PairVector12 y, p;
       for (int j = 0; j < 4; ++j) y.segment<3>(3 * j) = node3(x, nodes[j]), p.segment<3>(3 * j) = node3(dx, nodes[j]);
       const double t_end = 1 / std::max(ratio, kSmallestMeasuredRatio);
-      const double t = additive_ccd_fraction(edge, y, p, pair_scale_[k] * opt_.offset, 0.2, t_end, 1.0);
+      const double t = additive_ccd_fraction(edge, y, p, pair_scale_[c.pair] * opt_.offset, 0.2, t_end, 1.0);
       // A pair cleared to t_end rates 1 / t_end, written as what t_end is the inverse of:
       // 1 / (1 / r) need not round back to r, and the quasi-static solver cuts steps by r.
       pair_ratio = std::min(pair_ratio, t >= t_end ? std::max(ratio, kSmallestMeasuredRatio) : 1 / std::max(t, 1e-300));
@@ -380,26 +390,22 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   const size_t n = face_pairs_.size() + edge_pairs_.size();
   const size_t chunks = chunks_for(n);
   if (chunks == 1 || worker_threads() == 1) {
-    for (size_t k = 0; k < n; ++k) raise(k, plane_bound(k, ratio), ratio);
+    for (size_t k = 0; k < n; ++k) raise(plane_bound(k, ratio), ratio);
     return ratio;
   }
   // On more threads the plane bounds first, in chunks (core/parallel.hpp), each kept where it
-  // exceeds the nodes' ratio (the least the ratio can be); then the same pass over those alone.
-  // The same ratio as the single pass: a pair it passes over is one whose plane bound does not
-  // exceed the ratio so far. The floor is lower than that pass's running ratio, so more pairs are
+  // exceeds the nodes' ratio (the least the ratio can be); then the same pass over those alone,
+  // each check again at the ratio so far: the same ratio as the single pass, which passes a pair
+  // over by the same checks. The floor is lower than that pass's running ratio, so more pairs are
   // measured: on one thread the single pass is the cheaper (BDF2's aortic closure 4.6 % more CPU).
-  struct Closing {
-    size_t pair;
-    double plane;
-  };
   std::vector<std::vector<Closing>> kept_in(chunks);
   for_each_chunk(n, chunks, [&](size_t chunk, size_t begin, size_t end) {
     for (size_t k = begin; k < end; ++k)
-      if (const double plane = plane_bound(k, nodes_ratio); plane > nodes_ratio) kept_in[chunk].push_back({k, plane});
+      if (const Closing c = plane_bound(k, nodes_ratio); c.plane > nodes_ratio) kept_in[chunk].push_back(c);
   });
   std::vector<Closing> kept;
   append_chunks(kept, kept_in);
-  for (const Closing& c : kept) raise(c.pair, c.plane, ratio);
+  for (const Closing& c : kept) raise(c, ratio);
   return ratio;
 }
 

@@ -81,8 +81,10 @@ ClosureCost measure_closure(const SceneConfig& scene, const SceneModel& scene_mo
   for (int i = 0; i < A.cols(); ++i) A.coeffRef(i, i) += 1e-6 * std::max(1.0, std::abs(A.coeff(i, i)));
   VecX b = f;
   apply_constraints(A, b, sys->constrained());
-  // The linear solver the run used, by the name its summary gives.
-  const LinearSolverType type = parse_linear_solver(res.summary.linear_solver);
+  // The linear solver the run used, by the name its summary gives: the first, where a
+  // quasi-static run handed over to another after a failed increment ("llt_gmres, then ldlt_gmres").
+  const std::string used = res.summary.linear_solver;
+  const LinearSolverType type = parse_linear_solver(used.substr(0, used.find(',')));
   auto solver = make_linear_solver(type, 1e-10, 2000, sys->num_dofs());
   if (solver->needs_symmetric()) A = symmetric_part(A);
   solver->factorize(A);  // symbolic analysis once, as in a run

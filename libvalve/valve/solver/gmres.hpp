@@ -10,6 +10,7 @@
 // no extra work.
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -17,13 +18,15 @@ namespace valve {
 
 struct GmresResult {
   bool converged = false;
-  int iterations = 0;          // Arnoldi steps, one operator product and one preconditioner solve each
-  double relative_residual = 0;  // |b − A x| / |b| as the last restart measured it, or the Arnoldi estimate
+  int iterations = 0;            // Arnoldi steps, one operator product and one preconditioner solve each
+  double relative_residual = 0;  // |b − A x| / |b| at the x returned
 };
 
 /// Solves A x = b from the start `x`, to |b − A x| ≤ tol |b|. `apply(v, out)` sets out = A v;
 /// `precondition(v, out)` sets out = M⁻¹ v. Restarts every `restart` steps; at most
-/// `max_iterations` steps in all. A non-finite product or solve ends it unconverged.
+/// `max_iterations` steps in all. A non-finite right-hand side, product or solve ends it
+/// unconverged, as does a cycle that cannot lower the residual (A M⁻¹ singular on its Krylov
+/// space); x is then the last iterate measured.
 template <class Apply, class Precondition>
 GmresResult gmres(const Apply& apply, const Precondition& precondition, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                   double tol, int max_iterations, int restart = 30) {
@@ -31,12 +34,14 @@ GmresResult gmres(const Apply& apply, const Precondition& precondition, const Ei
   GmresResult result;
   const Eigen::Index n = b.size();
   const double b_norm = b.norm();
-  if (!(b_norm > 0)) {
+  if (!std::isfinite(b_norm)) return result;
+  if (b_norm == 0) {
     x.setZero();
     result.converged = true;
     return result;
   }
   const double target = tol * b_norm;
+  constexpr double kRoundingLevel = 1e-13;
   const int m = std::max(1, restart);
   std::vector<VectorXd> basis(m + 1, VectorXd(n));
   Eigen::MatrixXd hessenberg = Eigen::MatrixXd::Zero(m + 1, m);
@@ -60,6 +65,7 @@ GmresResult gmres(const Apply& apply, const Precondition& precondition, const Ei
       ++result.iterations;
       precondition(basis[k], z);
       apply(z, w);
+      const double product_norm = w.norm();
       for (int i = 0; i <= k; ++i) {  // modified Gram-Schmidt
         hessenberg(i, k) = w.dot(basis[i]);
         w -= hessenberg(i, k) * basis[i];
@@ -74,20 +80,27 @@ GmresResult gmres(const Apply& apply, const Precondition& precondition, const Ei
       }
       const double a = hessenberg(k, k), c = hessenberg(k + 1, k);
       const double rho = std::hypot(a, c);
-      cs(k) = rho > 0 ? a / rho : 1.0;
-      sn(k) = rho > 0 ? c / rho : 0.0;
+      // A diagonal at rounding level against the product it came from: A M⁻¹ is singular on the
+      // Krylov space, this step cannot lower the residual (its column would only amplify
+      // rounding), and the cycle ends with the columns before it.
+      if (!(rho > kRoundingLevel * product_norm)) break;
+      cs(k) = a / rho;
+      sn(k) = c / rho;
       hessenberg(k, k) = rho;
       hessenberg(k + 1, k) = 0;
       g(k + 1) = -sn(k) * g(k);
       g(k) = cs(k) * g(k);
-      // Happy breakdown (h_next = 0): the Krylov space holds the solution.
-      const bool done = std::abs(g(k + 1)) <= target || !(h_next > 0);
-      if (h_next > 0) basis[k + 1] = w / h_next;
+      // Breakdown (nothing of the product left outside the basis): the Krylov space holds the
+      // solution, or as much of it as it can.
+      const bool breakdown = !(h_next > kRoundingLevel * product_norm);
+      const bool done = std::abs(g(k + 1)) <= target || breakdown;
+      if (!breakdown) basis[k + 1] = w / h_next;
       if (done) {
         ++k;
         break;
       }
     }
+    if (k == 0) return result;  // nothing in this cycle lowers the residual
     // x += M⁻¹ V y with H y = g: one more preconditioner solve per cycle, so that only V is kept.
     const VectorXd y =
         hessenberg.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));

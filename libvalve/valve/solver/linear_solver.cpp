@@ -206,6 +206,9 @@ class SymmetricPartKrylov final : public LinearSolver {
     bicgstab_.setMaxIterations(max_it);
     bicgstab_.preconditioner().factorization = &factorization_;
   }
+  // The BiCGStab and the operator point into this object.
+  SymmetricPartKrylov(const SymmetricPartKrylov&) = delete;
+  SymmetricPartKrylov& operator=(const SymmetricPartKrylov&) = delete;
   bool needs_symmetric() const override { return false; }
   std::string name() const override { return name_; }
   void set_tolerance(double tol) override {

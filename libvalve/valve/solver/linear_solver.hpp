@@ -47,7 +47,7 @@ std::string to_string(LinearSolverType t);
 struct LinearSolverStats {
   long factorizations = 0;  // numeric factorizations (or preconditioner builds)
   long solves = 0;
-  long iterations = 0;      // Krylov iterations (iterative solvers)
+  long iterations = 0;      // Krylov iterations: GMRES steps (one preconditioner solve each), BiCGStab iterations (two)
   long failures = 0;        // factorizations or solves that failed
   double factor_seconds = 0, solve_seconds = 0;
   /// Adds another solver's counts (a run whose phases or load steps each had a solver).
