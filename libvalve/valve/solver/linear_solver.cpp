@@ -95,6 +95,17 @@ bool book_factorization(Eigen::ComputationInfo info, std::chrono::steady_clock::
   return ok;
 }
 
+// Books one solve (and its Krylov iterations) into `stats`; true if it succeeded with finite values.
+bool book_solve(bool succeeded, long iterations, const VecX& x, std::chrono::steady_clock::time_point t0,
+                LinearSolverStats& stats) {
+  ++stats.solves;
+  stats.iterations += iterations;
+  stats.solve_seconds += since(t0);
+  const bool good = succeeded && x.allFinite();
+  if (!good) ++stats.failures;
+  return good;
+}
+
 // Direct solvers share the analyse-once / factorize-per-matrix pattern.
 template <class Decomposition>
 class DirectSolver final : public LinearSolver {
@@ -112,11 +123,7 @@ class DirectSolver final : public LinearSolver {
     if (!ok_) return false;
     const auto t0 = std::chrono::steady_clock::now();
     x = dec_.solve(b);
-    ++stats_.solves;
-    stats_.solve_seconds += since(t0);
-    const bool good = dec_.info() == Eigen::Success && x.allFinite();
-    if (!good) ++stats_.failures;
-    return good;
+    return book_solve(dec_.info() == Eigen::Success, 0, x, t0, stats_);
   }
 
  private:
@@ -128,16 +135,11 @@ class DirectSolver final : public LinearSolver {
   bool ok_ = false;
 };
 
-// Books one Krylov solve into `stats`; true if it converged to finite values.
+// Books one Eigen Krylov solve into `stats`; true if it converged to finite values.
 template <class Krylov>
 bool book_krylov_solve(const Krylov& it, const VecX& x, std::chrono::steady_clock::time_point t0,
                        LinearSolverStats& stats) {
-  ++stats.solves;
-  stats.iterations += it.iterations();
-  stats.solve_seconds += since(t0);
-  const bool good = it.info() == Eigen::Success && x.allFinite();
-  if (!good) ++stats.failures;
-  return good;
+  return book_solve(it.info() == Eigen::Success, it.iterations(), x, t0, stats);
 }
 
 template <class Krylov>
@@ -242,12 +244,7 @@ class SymmetricPartKrylov final : public LinearSolver {
     const GmresResult r = gmres([&](const VecX& v, VecX& out) { out.noalias() = *operator_ * v; },
                                 [&](const VecX& v, VecX& out) { out = factorization_.solve(v); }, b, x, tol_, max_it_,
                                 kGmresRestart);
-    ++stats_.solves;
-    stats_.iterations += r.iterations;
-    stats_.solve_seconds += since(t0);
-    const bool good = r.converged && x.allFinite();
-    if (!good) ++stats_.failures;
-    return good;
+    return book_solve(r.converged, r.iterations, x, t0, stats_);
   }
 
  private:
