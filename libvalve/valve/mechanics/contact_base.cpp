@@ -33,6 +33,8 @@ ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool be
     sum += (mesh.points.row(e.a) - mesh.points.row(e.b)).norm();
   }
   mean_edge_ = topo.edges.empty() ? 0.0 : sum / topo.edges.size();
+  rest_close_faces_.assign(n, {});
+  rest_close_edges_.assign(edges_.size(), {});
   const bool has_start = mesh.initial.rows() == n;
   exclude_close_at(flatten(mesh.points), has_start);
   if (has_start) exclude_close_at(flatten(mesh.initial));
@@ -62,6 +64,13 @@ double gap_of(const std::vector<std::pair<Key, double>>& list, const Key& key) {
   return it != list.end() && it->first == key ? it->second : 0.0;
 }
 
+void sort_unique_lists(std::vector<std::vector<int>>& lists) {
+  for (auto& list : lists) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
+}
+
 std::array<int, 4> edge_pair_key(int a, int b, int c, int d) {
   std::array<int, 4> key{std::min(a, b), std::max(a, b), std::min(c, d), std::max(c, d)};
   if (std::make_pair(key[2], key[3]) < std::make_pair(key[0], key[1])) key = {key[2], key[3], key[0], key[1]};
@@ -80,12 +89,11 @@ void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only)
     const double d = point_triangle_distance(node3(x, i), node3(x, tri[0]), node3(x, tri[1]), node3(x, tri[2]));
     if (d > rest_reach_) continue;
     if (same || d <= touching)
-      rest_close_faces_.emplace_back(i, t);
+      rest_close_faces_[i].push_back(t);
     else
       narrow_faces_.push_back({{i, t}, d});
   }
-  std::sort(rest_close_faces_.begin(), rest_close_faces_.end());
-  rest_close_faces_.erase(std::unique(rest_close_faces_.begin(), rest_close_faces_.end()), rest_close_faces_.end());
+  sort_unique_lists(rest_close_faces_);
   keep_smallest_gap(narrow_faces_);
   std::vector<int> all(edges_.size());
   for (size_t e = 0; e < edges_.size(); ++e) all[e] = static_cast<int>(e);
@@ -97,12 +105,11 @@ void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only)
     const double gap = segment_segment_distance(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
     if (gap > rest_reach_) continue;
     if (same || gap <= touching)
-      rest_close_edges_.push_back(edge_pair_key(a, b, c, d));
+      rest_close_edges_[std::min(e1, e2)].push_back(std::max(e1, e2));
     else
       narrow_edges_.push_back({edge_pair_key(a, b, c, d), gap});
   }
-  std::sort(rest_close_edges_.begin(), rest_close_edges_.end());
-  rest_close_edges_.erase(std::unique(rest_close_edges_.begin(), rest_close_edges_.end()), rest_close_edges_.end());
+  sort_unique_lists(rest_close_edges_);
   keep_smallest_gap(narrow_edges_);
 }
 
@@ -113,11 +120,13 @@ double ContactTopology::start_gap_edges(int a, int b, int c, int d) const {
 }
 
 bool ContactTopology::close_at_rest(int node, int triangle) const {
-  return std::binary_search(rest_close_faces_.begin(), rest_close_faces_.end(), std::make_pair(node, triangle));
+  const auto& list = rest_close_faces_[node];
+  return std::binary_search(list.begin(), list.end(), triangle);
 }
 
-bool ContactTopology::edges_close_at_rest(int a, int b, int c, int d) const {
-  return std::binary_search(rest_close_edges_.begin(), rest_close_edges_.end(), edge_pair_key(a, b, c, d));
+bool ContactTopology::edges_close_at_rest(int e1, int e2) const {
+  const auto& list = rest_close_edges_[std::min(e1, e2)];
+  return std::binary_search(list.begin(), list.end(), std::max(e1, e2));
 }
 
 bool ContactTopology::in_ring(int node, int other) const {
@@ -144,9 +153,11 @@ bool ContactTopology::excluded(int node, int triangle) const {
   return leaflet_rule_excludes(node, leaflet_[triangle]);
 }
 
-bool ContactTopology::excluded_edges(int a, int b, int c, int d) const {
+bool ContactTopology::excluded_edges(int e1, int e2) const {
+  const auto [a, b] = edges_[e1];
+  const auto [c, d] = edges_[e2];
   if (incidence_only()) {
-    if (a == c || a == d || b == c || b == d || edges_close_at_rest(a, b, c, d)) return true;
+    if (a == c || a == d || b == c || b == d || edges_close_at_rest(e1, e2)) return true;
   } else {
     for (int u : {a, b})
       for (int v : {c, d})

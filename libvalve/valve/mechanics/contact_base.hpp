@@ -73,9 +73,9 @@ class ContactTopology {
 
   /// True when node `node` must not interact with triangle `triangle`.
   bool excluded(int node, int triangle) const;
-  /// True when edge (a, b) must not interact with edge (c, d): they share a vertex or one
-  /// edge's vertex is in the other's 1-ring, or the leaflet rule excludes them.
-  bool excluded_edges(int a, int b, int c, int d) const;
+  /// True when edge e1 must not interact with edge e2 (indices into edges()): they share a
+  /// vertex or one edge's vertex is in the other's 1-ring, or the leaflet rule excludes them.
+  bool excluded_edges(int e1, int e2) const;
   /// A narrow pair's distance where it started within the rest reach (the smallest of the
   /// starts seen); 0 for every other pair.
   double start_gap(int node, int triangle) const;
@@ -104,12 +104,14 @@ class ContactTopology {
   bool leaflet_rule_excludes(int node, int leaflet) const;
 
   bool close_at_rest(int node, int triangle) const;
-  bool edges_close_at_rest(int a, int b, int c, int d) const;
+  bool edges_close_at_rest(int e1, int e2) const;
 
   bool self_, between_;
   double rest_reach_ = -1;                               // < 0: the 1-ring rule
-  std::vector<std::pair<int, int>> rest_close_faces_;    // (node, triangle) within it at rest or the start, sorted
-  std::vector<std::array<int, 4>> rest_close_edges_;     // (a, b, c, d), a < b, c < d, (a, b) < (c, d), sorted
+  // Pairs within it at rest or the start, as sorted lists: per node its triangles, per edge
+  // the higher-numbered edges (the candidate lists ask once per pair, millions of times).
+  std::vector<std::vector<int>> rest_close_faces_;
+  std::vector<std::vector<int>> rest_close_edges_;
   std::vector<std::pair<std::pair<int, int>, double>> narrow_faces_;     // (node, triangle), start gap; sorted
   std::vector<std::pair<std::array<int, 4>, double>> narrow_edges_;      // edge key as above, start gap; sorted
   std::vector<Tri> triangles_;

@@ -133,9 +133,10 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
   if (opt_.edge_contact) {
     const auto edge_candidates = edge_box_pairs(x, edges, query_edges_, detection_);
     const auto edge_distance = measure(edge_candidates, [&](const std::pair<int, int>& pair) {
+      if (topology_.excluded_edges(pair.first, pair.second)) return -1.0;
       const auto [a, b] = edges[pair.first];
       const auto [c, d] = edges[pair.second];
-      if (topology_.excluded_edges(a, b, c, d) || all_constrained({a, b, c, d})) return -1.0;
+      if (all_constrained({a, b, c, d})) return -1.0;
       const double distance = segment_segment_distance(node3(x, a), node3(x, b), node3(x, c), node3(x, d));
       return distance <= detection_ ? distance : -1.0;
     });
