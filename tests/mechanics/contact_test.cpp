@@ -128,7 +128,7 @@ TEST_CASE("contact ignores its own triangles' 1-ring, constrained nodes and disa
   CHECK_THROWS_AS(bad.validate(), InputError);
 }
 
-TEST_CASE("both broad phases find exactly the brute-force pairs", "[mechanics][contact]") {
+TEST_CASE("every broad phase finds exactly the brute-force pairs", "[mechanics][contact]") {
   std::mt19937 gen(3);
   std::uniform_real_distribution<double> u(-5, 5);
   const int nodes = 400;
@@ -151,11 +151,13 @@ TEST_CASE("both broad phases find exactly the brute-force pairs", "[mechanics][c
   REQUIRE(brute.size() > 100);
   CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::sweep_and_prune) == brute);
   CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::spatial_hash) == brute);
+  CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::bvh) == brute);
   std::vector<char> query(nodes, 0);
   for (int i = 0; i < nodes; i += 3) query[i] = 1;
   const auto some = broad_phase_pairs(x, tris, margin, BroadPhaseMethod::spatial_hash, query);
   for (const auto& [i, t] : some) CHECK(i % 3 == 0);
   CHECK(some == broad_phase_pairs(x, tris, margin, BroadPhaseMethod::sweep_and_prune, query));
+  CHECK(some == broad_phase_pairs(x, tris, margin, BroadPhaseMethod::bvh, query));
 }
 
 TEST_CASE("the grid's queries split over threads find the brute-force pairs, call after call", "[mechanics][contact]") {
@@ -202,6 +204,7 @@ TEST_CASE("the grid's queries split over threads find the brute-force pairs, cal
       }
     REQUIRE(brute.size() > 500);
     CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::spatial_hash, query) == brute);
+    CHECK(broad_phase_pairs(x, tris, margin, BroadPhaseMethod::bvh, query) == brute);
 
     std::vector<int> query_edges(5000);
     std::iota(query_edges.begin(), query_edges.end(), 0);
@@ -336,7 +339,7 @@ TEST_CASE("edge box grid over a fine sheet: many cells, one edge across the scen
   CHECK(with_across > 100);  // the long edge meets the rows it crosses
 
   // Twenty unit triangles 1e6 apart: the mean-size cell would give 1e17 cells, so the cell
-  // grows until the grid fits; both broad phases still find each triangle's own nodes.
+  // grows until the grid fits; every broad phase still finds each triangle's own nodes.
   const int far = 20;
   VecX y(3 * 3 * far);
   std::vector<Tri> tris;
@@ -350,9 +353,11 @@ TEST_CASE("edge box grid over a fine sheet: many cells, one edge across the scen
   const auto hashed = broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::spatial_hash);
   CHECK(hashed.size() == static_cast<size_t>(3 * far));
   CHECK(hashed == broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::sweep_and_prune));
+  CHECK(hashed == broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::bvh));
 
   y[4] = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::spatial_hash), NumericalError);
+  CHECK_THROWS_AS(broad_phase_pairs(y, tris, 0.1, BroadPhaseMethod::bvh), NumericalError);
 }
 
 namespace {

@@ -166,6 +166,100 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
   return pairs;
 }
 
+/// A bounding volume hierarchy over the inflated boxes: a binary tree built top down, each
+/// node's boxes split at the median centre along the longest axis of their centres' extent,
+/// down to leaves of at most kLeafSize; each query point walks the subtrees whose box holds it.
+/// O(T log T) to build, O(log T + pairs) per query on meshes. Written here rather than taken
+/// from CGAL's AABB tree: that tree answers kernel predicates on geometric objects, and would
+/// bring CGAL's headers into the mechanics layer (core/ compiles none), for what is a box test.
+class BoxTree {
+ public:
+  explicit BoxTree(const std::vector<Box>& boxes) : boxes_(boxes), order_(boxes.size()) {
+    std::iota(order_.begin(), order_.end(), 0);
+    if (!boxes.empty()) build(0, static_cast<int>(boxes.size()));
+  }
+  /// The boxes that hold p, in any order.
+  template <class Visit>
+  void visit_holding(const Vec3& p, Visit&& visit) const {
+    if (nodes_.empty()) return;
+    int stack[64];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& n = nodes_[stack[--top]];
+      if (!inside(n.box, p)) continue;
+      if (n.right < 0) {
+        for (int k = n.begin; k < n.end; ++k)
+          if (inside(boxes_[order_[k]], p)) visit(order_[k]);
+        continue;
+      }
+      stack[top++] = n.left;
+      stack[top++] = n.right;
+    }
+  }
+
+ private:
+  static constexpr int kLeafSize = 4;
+  struct Node {
+    Box box;
+    int begin, end;        // the range of order_ below this node
+    int left = -1, right = -1;
+  };
+  int build(int begin, int end) {
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.push_back({boxes_[order_[begin]], begin, end});
+    Box box = boxes_[order_[begin]];
+    Vec3 lo = box.lo + box.hi, hi = lo;  // twice the centres' extent
+    for (int k = begin + 1; k < end; ++k) {
+      const Box& b = boxes_[order_[k]];
+      box.lo = box.lo.cwiseMin(b.lo), box.hi = box.hi.cwiseMax(b.hi);
+      const Vec3 c = b.lo + b.hi;
+      lo = lo.cwiseMin(c), hi = hi.cwiseMax(c);
+    }
+    nodes_[id].box = box;
+    if (end - begin <= kLeafSize) return id;
+    int axis = 0;
+    (hi - lo).maxCoeff(&axis);
+    const int mid = begin + (end - begin) / 2;
+    std::nth_element(order_.begin() + begin, order_.begin() + mid, order_.begin() + end, [&](int a, int b) {
+      return boxes_[a].lo[axis] + boxes_[a].hi[axis] < boxes_[b].lo[axis] + boxes_[b].hi[axis];
+    });
+    // Halving the range bounds the depth by log2(T / kLeafSize) + 1, well within the stack.
+    const int left = build(begin, mid);
+    const int right = build(mid, end);
+    nodes_[id].left = left, nodes_[id].right = right;
+    return id;
+  }
+
+  const std::vector<Box>& boxes_;
+  std::vector<int> order_;
+  std::vector<Node> nodes_;
+};
+
+std::vector<std::pair<int, int>> bounding_volume_hierarchy(const VecX& x, const std::vector<Box>& boxes,
+                                                           const std::vector<int>& nodes) {
+  // As the grid: non-finite positions stop here (a NaN centre would break the median splits).
+  for (const auto& b : boxes)
+    if (!b.lo.allFinite() || !b.hi.allFinite()) throw NumericalError("broad phase: non-finite positions");
+  for (int i : nodes)
+    if (!node3(x, i).allFinite()) throw NumericalError("broad phase: non-finite positions");
+  const BoxTree tree(boxes);
+  // The queries in chunks (core/parallel.hpp), each node's triangles sorted, gathered in order.
+  const size_t chunks = chunks_for(nodes.size());
+  std::vector<std::vector<std::pair<int, int>>> found(chunks);
+  for_each_chunk(nodes.size(), chunks, [&](size_t chunk, size_t begin, size_t end) {
+    auto& out = found[chunk];
+    for (size_t q = begin; q < end; ++q) {
+      const size_t first = out.size();
+      tree.visit_holding(node3(x, nodes[q]), [&](int t) { out.emplace_back(nodes[q], t); });
+      std::sort(out.begin() + first, out.end());
+    }
+  });
+  std::vector<std::pair<int, int>> pairs;
+  append_chunks(pairs, found);
+  return pairs;
+}
+
 std::vector<std::pair<int, int>> spatial_hash(const VecX& x, const std::vector<Box>& boxes,
                                               const std::vector<int>& nodes) {
   std::vector<Box> points(nodes.size());
@@ -178,11 +272,17 @@ std::vector<std::pair<int, int>> spatial_hash(const VecX& x, const std::vector<B
 BroadPhaseMethod parse_broad_phase(const std::string& name) {
   if (name == "sweep_and_prune") return BroadPhaseMethod::sweep_and_prune;
   if (name == "spatial_hash") return BroadPhaseMethod::spatial_hash;
-  throw InputError("broad phase: expected sweep_and_prune or spatial_hash, found '" + name + "'");
+  if (name == "bvh") return BroadPhaseMethod::bvh;
+  throw InputError("broad phase: expected sweep_and_prune, spatial_hash or bvh, found '" + name + "'");
 }
 
 std::string to_string(BroadPhaseMethod m) {
-  return m == BroadPhaseMethod::sweep_and_prune ? "sweep_and_prune" : "spatial_hash";
+  switch (m) {
+    case BroadPhaseMethod::sweep_and_prune: return "sweep_and_prune";
+    case BroadPhaseMethod::spatial_hash: return "spatial_hash";
+    case BroadPhaseMethod::bvh: return "bvh";
+  }
+  return "spatial_hash";
 }
 
 std::vector<std::pair<int, int>> broad_phase_pairs(const VecX& x, const std::vector<Tri>& triangles,
@@ -190,8 +290,12 @@ std::vector<std::pair<int, int>> broad_phase_pairs(const VecX& x, const std::vec
                                                    const std::vector<char>& query) {
   const auto boxes = inflated_boxes(x, triangles, margin);
   auto nodes = query_nodes(static_cast<int>(x.size() / 3), query);
-  return method == BroadPhaseMethod::sweep_and_prune ? sweep_and_prune(x, boxes, std::move(nodes))
-                                                     : spatial_hash(x, boxes, nodes);
+  switch (method) {
+    case BroadPhaseMethod::sweep_and_prune: return sweep_and_prune(x, boxes, std::move(nodes));
+    case BroadPhaseMethod::bvh: return bounding_volume_hierarchy(x, boxes, nodes);
+    case BroadPhaseMethod::spatial_hash: break;
+  }
+  return spatial_hash(x, boxes, nodes);
 }
 
 std::vector<std::pair<int, int>> edge_box_pairs(const VecX& x, const std::vector<std::pair<int, int>>& edges,

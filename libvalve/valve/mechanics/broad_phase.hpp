@@ -3,15 +3,18 @@
 // enough to be worth an exact test. Each triangle's axis-aligned bounding box is inflated
 // by a margin; a pair is a candidate when the node lies inside the inflated box.
 //
-// Two interchangeable methods give the same pairs (tests/mechanics check this):
+// Three interchangeable methods give the same pairs (tests/mechanics check this):
 //  - sweep_and_prune: the seed's sorted list of boxes. Boxes are sorted by their lower x
 //    bound and swept against the nodes sorted by x, keeping the boxes that straddle the
 //    sweep line active. O((N + T) log T + active set); degrades when many boxes share an
 //    x range (a valve seen along its axis).
 //  - spatial_hash: a uniform grid whose cell is the mean inflated box size; each box is
 //    listed in the cells it overlaps, each node looks up its own cell. O(N + T) expected,
-//    insensitive to orientation. `valve-bench --broad-phase` measures both
-//    (docs/results/performance.md).
+//    insensitive to orientation.
+//  - bvh: a bounding volume hierarchy over the boxes (median splits along the longest axis,
+//    leaves of four), each node walking the subtrees whose box holds it. O(T log T) to build,
+//    O(log T + pairs) per node, insensitive to orientation and to boxes of mixed sizes.
+// `valve-bench --broad-phase` measures all three (docs/results/performance.md).
 #include <string>
 #include <utility>
 #include <vector>
@@ -20,7 +23,7 @@
 
 namespace valve {
 
-enum class BroadPhaseMethod { sweep_and_prune, spatial_hash };
+enum class BroadPhaseMethod { sweep_and_prune, spatial_hash, bvh };
 
 BroadPhaseMethod parse_broad_phase(const std::string& name);  // throws InputError
 std::string to_string(BroadPhaseMethod m);

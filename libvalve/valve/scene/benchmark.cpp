@@ -110,7 +110,8 @@ std::vector<BroadPhaseCost> measure_broad_phase(const SceneConfig& sc, const Tri
     const double margin =
         PenaltyContactTerm(level, opt, std::vector<char>(3 * level.num_nodes(), 0)).detection_distance();
     std::vector<std::pair<int, int>> reference;
-    for (BroadPhaseMethod method : {BroadPhaseMethod::sweep_and_prune, BroadPhaseMethod::spatial_hash}) {
+    for (BroadPhaseMethod method :
+         {BroadPhaseMethod::sweep_and_prune, BroadPhaseMethod::spatial_hash, BroadPhaseMethod::bvh}) {
       std::vector<double> times;
       std::vector<std::pair<int, int>> pairs;
       for (int r = 0; r < reps; ++r) {
@@ -120,7 +121,7 @@ std::vector<BroadPhaseCost> measure_broad_phase(const SceneConfig& sc, const Tri
       }
       if (method == BroadPhaseMethod::sweep_and_prune) reference = pairs;
       else if (pairs != reference)
-        throw Error("broad phase: spatial_hash and sweep_and_prune disagree on " + std::to_string(level.num_triangles()) +
+        throw Error("broad phase: " + to_string(method) + " and sweep_and_prune disagree on " + std::to_string(level.num_triangles()) +
                     " triangles (" + std::to_string(pairs.size()) + " vs " + std::to_string(reference.size()) + " pairs)");
       out.push_back({to_string(method), level.num_triangles(), margin, median(times), static_cast<long>(pairs.size())});
     }

@@ -46,9 +46,10 @@ struct BroadPhaseCost {
   long pairs = 0;
 };
 
-/// Both methods on `mesh` and on its midpoint subdivisions ×4 and ×16 (same surface), with
-/// the scene's penalty-contact options (defaults if it declares none). Throws Error if the
-/// two methods disagree on any pair list: they are meant to be interchangeable.
+/// Every method (sweep and prune, spatial hash, BVH, in that order) on `mesh` and on its
+/// midpoint subdivisions ×4 and ×16 (same surface), with the scene's penalty-contact options
+/// (defaults if it declares none). Throws Error if a method's pair list differs from sweep and
+/// prune's: they are meant to be interchangeable.
 std::vector<BroadPhaseCost> measure_broad_phase(const SceneConfig& scene, const TriMesh& mesh, int repetitions);
 
 }  // namespace valve

@@ -169,7 +169,7 @@ SceneConfig parse_scene(const json& j, const std::string& file, const fs::path& 
   if (r.has("contact")) {
     JsonReader c = r.object("contact");
     const auto broad_phase = [&c] {
-      return parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune"}, std::string("spatial_hash")));
+      return parse_broad_phase(c.choice("broad_phase", {"spatial_hash", "sweep_and_prune", "bvh"}, std::string("spatial_hash")));
     };
     // Both distances beyond the contact's reach; the cap on the automatic distance only (a
     // scene that gives the distance needs none).
