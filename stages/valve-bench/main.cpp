@@ -5,7 +5,7 @@
 // time over one factorization of the same system. The closure is the scene's whole model, its
 // chordae and annulus motion included, as valve-simulate runs it, with the scene's solver.
 // Writes DIR/bench.json and DIR/bench.csv.
-// --broad-phase: instead, the contact broad phase (sweep and prune, spatial hash) at the
+// --broad-phase: instead, the contact broad phase (sweep and prune, spatial hash, BVH) at the
 // mesh's positions (e.g. a closed valve from valve-simulate) and on its ×4 and ×16
 // subdivisions; writes DIR/broad_phase.json and DIR/broad_phase.csv.
 // Timings are medians over repetitions within this process; quote them with their ratios.

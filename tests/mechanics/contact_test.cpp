@@ -160,6 +160,23 @@ TEST_CASE("every broad phase finds exactly the brute-force pairs", "[mechanics][
   CHECK(some == broad_phase_pairs(x, tris, margin, BroadPhaseMethod::bvh, query));
 }
 
+TEST_CASE("the BVH agrees with the other broad phases on tiny and stacked scenes", "[mechanics][contact]") {
+  // One to five triangles (the tree is a single leaf), then twelve copies of one triangle (every
+  // centre the same: the median splits still halve the range), a far node, and no triangles.
+  for (const int copies : {1, 2, 5, 12}) {
+    INFO(copies << " triangles");
+    VecX x(3 * 6);
+    node3(x, 0) = Vec3(0, 0, 0), node3(x, 1) = Vec3(1, 0, 0), node3(x, 2) = Vec3(0, 1, 0);
+    node3(x, 3) = Vec3(0.2, 0.2, 0.05), node3(x, 4) = Vec3(0.2, 0.2, 0.5), node3(x, 5) = Vec3(9, 9, 9);
+    const std::vector<Tri> tris(copies, Tri{0, 1, 2});
+    const auto swept = broad_phase_pairs(x, tris, 0.1, BroadPhaseMethod::sweep_and_prune);
+    CHECK(swept.size() == static_cast<size_t>(4 * copies));  // nodes 0-3 in every box, 4 and 5 in none
+    CHECK(broad_phase_pairs(x, tris, 0.1, BroadPhaseMethod::bvh) == swept);
+    CHECK(broad_phase_pairs(x, tris, 0.1, BroadPhaseMethod::spatial_hash) == swept);
+  }
+  CHECK(broad_phase_pairs(VecX::Zero(9), {}, 0.1, BroadPhaseMethod::bvh).empty());
+}
+
 TEST_CASE("the grid's queries split over threads find the brute-force pairs, call after call", "[mechanics][contact]") {
   // 6,000 query nodes and 5,000 query edges make three and two chunks (core/parallel.hpp), run
   // on every core the test may use. The same scene twice, then one with more targets: one call's

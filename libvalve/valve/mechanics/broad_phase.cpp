@@ -236,8 +236,10 @@ class BoxTree {
   std::vector<Node> nodes_;
 };
 
+/// `nodes` in increasing order (query_nodes), so the gathered pairs are sorted.
 std::vector<std::pair<int, int>> bounding_volume_hierarchy(const VecX& x, const std::vector<Box>& boxes,
                                                            const std::vector<int>& nodes) {
+  if (boxes.empty() || nodes.empty()) return {};  // as the grid, which returns before its checks
   // As the grid: non-finite positions stop here (a NaN centre would break the median splits).
   for (const auto& b : boxes)
     if (!b.lo.allFinite() || !b.hi.allFinite()) throw NumericalError("broad phase: non-finite positions");

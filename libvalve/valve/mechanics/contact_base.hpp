@@ -113,7 +113,7 @@ class ContactTopology {
   std::vector<std::vector<int>> rest_close_faces_;
   std::vector<std::vector<int>> rest_close_edges_;
   std::vector<std::pair<std::pair<int, int>, double>> narrow_faces_;     // (node, triangle), start gap; sorted
-  std::vector<std::pair<std::array<int, 4>, double>> narrow_edges_;      // edge key as above, start gap; sorted
+  std::vector<std::pair<std::array<int, 4>, double>> narrow_edges_;      // (a, b, c, d), a < b, c < d, (a, b) < (c, d), start gap; sorted
   std::vector<Tri> triangles_;
   std::vector<int> leaflet_;                     // per triangle
   std::vector<std::vector<int>> node_leaflets_;  // sorted

@@ -52,7 +52,13 @@
 //   - negative eigenvalues scaled by 0.8 instead of clamped: 38 steps, with 19 refused
 //     factorisations more;
 //   - the exact matrix's own Cholesky where it is positive definite: 9 steps there, but it is
-//     on 12 of the 36 exact directions and on none of the deck's 77;
+//     on 12 of the 36 exact directions and on none of the deck's 77; adding (4^k − 1) M (its
+//     δ divided by 4^k) makes it so on the same 12 at k = 1 and on no other even at k = 7:
+//     the exact pair Hessians' negative part (b′ ∇²d; ∇²d = (I − nnᵀ)/d for a pair closest at a
+//     vertex) is far larger than any M/δ the iteration could afford;
+//   - Eigen's LDLᵀ of the exact matrix (indefinite allowed): 10 steps, but its simplicial
+//     factorisations of 16,000 unknowns take 41 s over the closure (beside a second job;
+//     CHOLMOD's Cholesky factorisations 7 s alone);
 //   - exact Hessians only below a relative residual of 1e-2 or 1e-3: 139 and 341
 //     factorisations (projected directions converge linearly near equilibrium);
 //   - at most 40 GMRES steps on an exact direction, then the projected one: 168 directions,
