@@ -339,11 +339,14 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
   struct Closing {
     size_t pair;
     double plane = 0, recorded_room = 0, room = 0;
+    int nodes[4];  // pair_nodes(pair), for the collision search
+    bool edge;
   };
   auto plane_bound = [&](size_t k, double floor) {
     Closing c{k};
-    int nodes[4];
-    const int first_side = pair_nodes(k, nodes) ? 2 : 1;
+    c.edge = pair_nodes(k, c.nodes);
+    const int* nodes = c.nodes;
+    const int first_side = c.edge ? 2 : 1;
     const double offset = pair_scale_[k] * opt_.offset;
     auto room_of = [&](const PairGap& g) {
       return barrier() ? std::max(g.distance - offset, 1e-300) : std::max(delta, g.distance);
@@ -371,12 +374,10 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
     if (c.plane <= ratio) return;
     double pair_ratio = c.plane;
     if (barrier()) {
-      int nodes[4];
-      const bool edge = pair_nodes(c.pair, nodes);
       PairVector12 y, p;
-      for (int j = 0; j < 4; ++j) y.segment<3>(3 * j) = node3(x, nodes[j]), p.segment<3>(3 * j) = node3(dx, nodes[j]);
+      for (int j = 0; j < 4; ++j) y.segment<3>(3 * j) = node3(x, c.nodes[j]), p.segment<3>(3 * j) = node3(dx, c.nodes[j]);
       const double t_end = 1 / std::max(ratio, kSmallestMeasuredRatio);
-      const double t = additive_ccd_fraction(edge, y, p, pair_scale_[c.pair] * opt_.offset, 0.2, t_end, 1.0);
+      const double t = additive_ccd_fraction(c.edge, y, p, pair_scale_[c.pair] * opt_.offset, 0.2, t_end, 1.0);
       // A pair cleared to t_end rates 1 / t_end, written as what t_end is the inverse of:
       // 1 / (1 / r) need not round back to r, and the quasi-static solver cuts steps by r.
       pair_ratio = std::min(pair_ratio, t >= t_end ? std::max(ratio, kSmallestMeasuredRatio) : 1 / std::max(t, 1e-300));
