@@ -13,6 +13,9 @@ namespace valve {
 namespace {
 
 constexpr double kMinProximalStep = 1e-14;
+// The smallest share of the exact contact Hessians' departure from the projected ones tried
+// before the projected direction: six more solves on the same factorisation at most.
+constexpr double kSmallestExactShare = 1.0 / 64;
 
 }  // namespace
 
@@ -56,7 +59,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
     trust = 0.05 * (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
   }
   SystemMatrix system_matrix;
-  SparseMatrix exact_matrix;
+  SparseMatrix exact_matrix, blended_matrix;
   VecX f, fe, dx, b, f_trial, x_before;
   double delta = opt.initial_proximal_step;
   ExactHessianSchedule exact_hessians;
@@ -136,7 +139,18 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
             continue;
           }
           ++sum.newton_iterations;
-          const bool exact_descends = solver->solve(b, dx) && dx.allFinite() && f.dot(dx) > 0;
+          ++sum.exact_directions;
+          bool exact_descends = solver->solve(b, dx) && dx.allFinite() && f.dot(dx) > 0;
+          // Where the exact direction does not descend, the same again with the exact
+          // Hessians' departure from the projected ones scaled down, P + t (E − P) for
+          // t = 1/2, 1/4, ... (the header says why).
+          for (double t = 0.5; !exact_descends && t >= kSmallestExactShare; t *= 0.5) {
+            blended_matrix = P + t * (exact_matrix - P);
+            ++sum.newton_iterations;
+            ++sum.scaled_exact_directions;
+            exact_descends = solver->set_operator(blended_matrix) && solver->solve(b, dx) && dx.allFinite() &&
+                             f.dot(dx) > 0;
+          }
           if (!exact_descends) {
             exact = false;
             exact_hessians.failed_at(delta);
@@ -145,12 +159,14 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
               continue;
             }
             ++sum.newton_iterations;
+            ++sum.projected_directions;
           }
         } else if (!solver->factorize(A) || !solver->solve(b, dx) || !dx.allFinite()) {
           if (!retry_projected()) delta *= 0.25;
           continue;
         } else {
           ++sum.newton_iterations;
+          ++(exact ? sum.exact_directions : sum.projected_directions);
         }
         const double descent = f.dot(dx);  // −∇Φ·Δ
         if (!(descent > 0)) {              // H not positive definite: not a descent direction

@@ -21,8 +21,20 @@
 // * Contact Hessians: projected to positive semi-definite while δ < 1e4 ms², exact from
 //   there on, so that the last iterations converge quadratically (the projection's error made
 //   them linear: 200 iterations from 1e-2 to 1e-6 on the sample mitral closure). A direction
-//   that fails with the exact ones is taken again with projected ones at the same δ
-//   (ExactHessianSchedule: when they come back).
+//   that fails with the exact ones (it does not descend on Φ_k: their negative part, b′∇²d of
+//   pairs closest at an edge or a vertex, outweighs the rest along f) is solved again with
+//   their departure from the projected ones halved, P + (E − P)/2, then quartered, down to
+//   1/64, and only then with projected ones, all on the same factorisation at the same δ
+//   (ExactHessianSchedule: when exact ones come back). A share of the exact curvature keeps
+//   the iteration closer to Newton's than the projection does. Measured against the projected
+//   retry alone: the normal-valve study's 100 taut-root closures 7,341 factorisations against
+//   8,395 (2 against 7 over 150), its 70 slack-root ones 26,283 against 26,209; the ×16
+//   mitral closure from six starts 1e-6 mm apart 78-119 against 79-159; the sample mitral
+//   closure from eleven 72-111 against 72-138 (median 96 both); the aortic valve M-S closure
+//   from eleven 55-62 against 54-73, FE 54 against 72 from every start; the Texas TriValve
+//   deck 912 against 901, but 7,019 GMRES steps against 9,550 and 260 s against 280 s. Every
+//   closure ends on the same equilibrium (1e-7 mm apart on the small ones, mean over nodes;
+//   ×16 0.014 mm, the deck 0.003 mm).
 // * Line search: from the largest step the limits allow (a trust radius on node moves, and
 //   every term's step_ratio: the contact barrier's conservative collision bounds, so that no
 //   iterate ever intersects), halved until Φ_k falls by the Armijo fraction, or failing that
@@ -41,8 +53,8 @@
 // direction: Eigen's simplicial LLᵀ below 6,000 unknowns, CHOLMOD's supernodal one above.
 // * With the contact Hessians projected. Exact ones may make the matrix indefinite, so they
 //   enter as GMRES's operator only, on the projected Jacobian's Cholesky; where that
-//   direction fails, the projected direction is solved on the same factorisation (no second
-//   factorisation for the retry).
+//   direction fails, the scaled ones and then the projected one are solved on the same
+//   factorisation (no second factorisation for the retries).
 //   The cost: on the ×16 mitral closure an exact direction takes 45 GMRES steps (mean over 36),
 //   a projected one 9 (the pressure's skew part alone), and on the Texas TriValve deck 85
 //   against 5; those steps are most of the GMRES time. Why this preconditioner all the same
@@ -63,8 +75,20 @@
 //     factorisations (projected directions converge linearly near equilibrium);
 //   - at most 40 GMRES steps on an exact direction, then the projected one: 168 directions,
 //     48 s.
-// * A Cholesky refuses a symmetric part that is not positive definite (the pressure's stiffness
-//   can make it so), and δ then shrinks: the proximal term regularises there. That keeps
+//   - Krylov subspace recycling from one direction to the next (GCRO-DR, each solve's slowest
+//     harmonic Ritz vectors carried on as solution-space directions, 20 or 30 kept): 7,378
+//     steps on 83 directions against 1,995 on 81, some solves stalling at the 2,000-step cap.
+//     The exact Hessians' negative part spans more directions than a recycled space holds (on
+//     a synthetic sequence of systems with eight slow eigenvalues the same code took 10 steps
+//     where plain GMRES took 177);
+//   - a restart of 100 instead of 30: another path, 278 directions.
+// * A Cholesky refuses a symmetric part that is not positive definite, and δ then shrinks: the
+//   proximal term regularises there. On the sample mitral closure (mass-spring) 14 of its 16
+//   refusals come from springs in compression (their transverse stiffness F/l < 0), 2 from the
+//   pressure's stiffness: factorised without the latter, 14 are refused still. Dropping the
+//   compressed springs' F/l refuses none but lengthens the path: 111 directions with it
+//   dropped from every matrix (the last ones linear, stopping at 9e-7), 255 with it dropped
+//   from the projected directions' matrices only, against 71. Refusal keeps
 //   Newton's path continuous in its start: over eleven starts 1e-6 mm apart the sample mitral
 //   closure spreads 0.013 mm (median, mean over nodes), against 0.18 mm with an LDLᵀ, which
 //   factorises the indefinite matrix and lets δ grow past it; at a fixed 2.5 mm contact detection
@@ -135,7 +159,9 @@ class ExactHessianSchedule {
 ///   (ForcingTerm::next).
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
 ///   30.1 s against 30.9 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
-///   75-104 factorizations against 96-138 fixed (the Newton path, not the solves, sets these).
+///   75-104 factorizations against 96-138 fixed (the Newton path, not the solves, sets these);
+///   the ×16 mitral closure 210 directions, 152 factorizations and 50 s against 81, 79 and 33 s
+///   (a cycle of loosely solved directions near equilibrium).
 ///   Why it is not the default: the saving is small with GMRES's directions, and a direction
 ///   solved to 1e-2 differs from the exact one by that much, so the path is another than exact
 ///   Newton's: the normal aortic valve's forty perturbed starts land on one shape, but not

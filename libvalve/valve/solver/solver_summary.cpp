@@ -23,6 +23,9 @@ nlohmann::json SolverSummary::to_json() const {
           {"oscillation_cuts", oscillation_cuts},
           {"newton_iterations", newton_iterations},
           {"jacobian_evaluations", jacobian_evaluations},
+          {"exact_directions", exact_directions},
+          {"scaled_exact_directions", scaled_exact_directions},
+          {"projected_directions", projected_directions},
           {"solver", solver},
           {"fallback_from", fallback_from},
           {"approach", approach},
@@ -58,6 +61,9 @@ void SolverSummary::accumulate(const SolverSummary& o) {
   oscillation_cuts += o.oscillation_cuts;
   newton_iterations += o.newton_iterations;
   jacobian_evaluations += o.jacobian_evaluations;
+  exact_directions += o.exact_directions;
+  scaled_exact_directions += o.scaled_exact_directions;
+  projected_directions += o.projected_directions;
   simulated_time_ms += o.simulated_time_ms;
   wall_seconds += o.wall_seconds;
   status = o.status;

@@ -21,6 +21,9 @@ struct SolverSummary {
   long oscillation_cuts = 0;  // BDF2: steps cut because the state swung back and forth
   long newton_iterations = 0;   // static solver
   long jacobian_evaluations = 0;
+  // Quasi-static: directions solved with exact contact Hessians, with their departure from the
+  // projected ones scaled down (after an exact one did not descend), with projected ones.
+  long exact_directions = 0, scaled_exact_directions = 0, projected_directions = 0;
   LinearSolverStats linear;
   std::string linear_solver;
   std::string solver;          // which solver produced the result (bdf2 | static)
