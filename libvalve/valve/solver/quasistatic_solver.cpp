@@ -238,7 +238,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   // 6,000 unknowns; above, an LDLᵀ is too slow to take over) hands over to its LDLᵀ: where the
   // symmetric part stays indefinite the Cholesky refuses it until δ is too small to move
   // (measured with the Cholesky alone: a slack-root closure of the normal-valve study stalls so
-  // at load factor 0.66, which the LDLᵀ closes from its start in 506 directions); 5 of the
+  // at load factor 0.66, which the LDLᵀ closes from its start in 506 directions); 6 of the
   // study's 170 quasi-static closures fail an increment and hand over.
   LinearSolverStats earlier;
   auto after_failed_increment = [&] {
