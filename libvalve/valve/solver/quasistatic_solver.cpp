@@ -91,7 +91,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       double pi0 = 0;
       if (!sys.internal_energy(s, pi0) || !std::isfinite(pi0)) return false;
       // A direction that fails (its solve, or its descent) with exact contact Hessians is taken
-      // again with projected ones at the same δ.
+      // again with projected ones at the same δ (on GMRES's path, after the scaled ones below).
       auto retry_projected = [&] {
         if (!exact) return false;
         exact = false;
@@ -121,7 +121,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
             system_matrix.assemble(sys.dfdx(), -delta, nullptr, 0.0, M, cons, solver->needs_symmetric(), b);
         if (exact && solver->takes_preconditioner()) {
           // The exact matrix by GMRES on the Cholesky of the projected one; where its
-          // direction fails, the projected direction on the same factorization.
+          // direction fails, scaled ones and then the projected one on the same factorization.
           if (!exact_jacobian) {  // a line search failed after the last try: evaluate again
             sys.set_jacobian_mode(JacobianMode::exact);
             if (!sys.evaluate(s, f, true, false)) return false;
@@ -141,9 +141,10 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
           ++sum.newton_iterations;
           ++sum.exact_directions;
           bool exact_descends = solver->solve(b, dx) && dx.allFinite() && f.dot(dx) > 0;
-          // Where the exact direction does not descend, the same again with the exact
-          // Hessians' departure from the projected ones scaled down, P + t (E − P) for
-          // t = 1/2, 1/4, ... (the header says why).
+          // Where the exact direction fails (it does not descend, or GMRES does not converge),
+          // the same again with the exact Hessians' departure from the projected ones scaled
+          // down, P + t (E − P) for t = 1/2, 1/4, ... (the header says why). Each solve counts
+          // as a Newton direction, load continuation's fast-increment test included.
           for (double t = 0.5; !exact_descends && t >= kSmallestExactShare; t *= 0.5) {
             blended_matrix = P + t * (exact_matrix - P);
             ++sum.newton_iterations;

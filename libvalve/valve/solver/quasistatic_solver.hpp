@@ -22,7 +22,8 @@
 //   there on, so that the last iterations converge quadratically (the projection's error made
 //   them linear: 200 iterations from 1e-2 to 1e-6 on the sample mitral closure). A direction
 //   that fails with the exact ones (it does not descend on Φ_k: their negative part, b′∇²d of
-//   pairs closest at an edge or a vertex, outweighs the rest along f) is solved again with
+//   pairs closest at an edge or a vertex, outweighs the rest along f; or GMRES does not
+//   converge on it) is solved again with
 //   their departure from the projected ones halved, P + (E − P)/2, then quartered, down to
 //   1/64, and only then with projected ones, all on the same factorisation at the same δ
 //   (ExactHessianSchedule: when exact ones come back). A share of the exact curvature keeps
@@ -55,10 +56,11 @@
 //   enter as GMRES's operator only, on the projected Jacobian's Cholesky; where that
 //   direction fails, the scaled ones and then the projected one are solved on the same
 //   factorisation (no second factorisation for the retries).
-//   The cost: on the ×16 mitral closure an exact direction takes 45 GMRES steps (mean over 36),
-//   a projected one 9 (the pressure's skew part alone), and on the Texas TriValve deck 85
-//   against 5; those steps are most of the GMRES time. Why this preconditioner all the same
-//   (each measured on the ×16 closure, 79 factorisations and 36 s as it stands):
+//   The cost, measured with the projected retry alone: on the ×16 mitral closure an exact
+//   direction took 45 GMRES steps (mean over 36), a projected one 9 (the pressure's skew part
+//   alone), and on the Texas TriValve deck 85 against 5; those steps are most of the GMRES
+//   time. Why this preconditioner all the same (each measured on the ×16 closure with the
+//   projected retry alone, 79 factorisations and 36 s):
 //   - the pair Hessians' eigenvalues made absolute instead of clamped: 169 steps (A − P is
 //     twice the negative part instead of once);
 //   - negative eigenvalues scaled by 0.8 instead of clamped: 38 steps, with 19 refused
@@ -86,9 +88,10 @@
 //   proximal term regularises there. On the sample mitral closure (mass-spring) 14 of its 16
 //   refusals come from springs in compression (their transverse stiffness F/l < 0), 2 from the
 //   pressure's stiffness: factorised without the latter, 14 are refused still. Dropping the
-//   compressed springs' F/l refuses none but lengthens the path: 111 directions with it
-//   dropped from every matrix (the last ones linear, stopping at 9e-7), 255 with it dropped
-//   from the projected directions' matrices only, against 71. Refusal keeps
+//   compressed springs' F/l refuses none but lengthens the path (measured with the projected
+//   retry alone): 111 directions with it dropped from every matrix (the last ones linear,
+//   stopping at 9e-7), 255 with it dropped from the projected directions' matrices only,
+//   against 71. Refusal keeps
 //   Newton's path continuous in its start: over eleven starts 1e-6 mm apart the aortic valve FE
 //   closure spreads 9e-10 mm (median, mean over nodes), against 0.007 mm with an LDLᵀ, which
 //   factorises the indefinite matrix and lets δ grow past it; at a fixed 2.5 mm contact detection
@@ -123,8 +126,8 @@ namespace valve {
 /// non-positive pivot and cost less than a whole one). Holding δ below half the refused value
 /// for the next eight accepted steps takes 29 % fewer factorisations over the normal-valve
 /// study's 70 slack-root closures, 6 % fewer over its 100 taut ones, but 86 against 72 on the
-/// aortic valve FE closure (medians of eleven starts; 1.24 s against 1.00 s in the solver), so
-/// δ is not held.
+/// aortic valve FE closure (medians of eleven starts; 1.24 s against 1.00 s in the solver; all
+/// measured with the projected retry alone), so δ is not held.
 enum class ProximalStepRule { step, gain };
 
 /// Largest proximal step δ (ms²): from there on the M/δ term is nothing and δ stops growing.
@@ -158,16 +161,18 @@ class ExactHessianSchedule {
 ///   After a step that did not lower the residual the next direction is solved to the floor
 ///   (ForcingTerm::next).
 ///   Measured (docs/results/quasistatic-solver.md): 40 graft closures of the aortic valve
-///   30.1 s against 30.9 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
-///   75-104 factorizations against 96-138 fixed (the Newton path, not the solves, sets these);
-///   the ×16 mitral closure 210 directions, 152 factorizations and 50 s against 81, 79 and 33 s
-///   (a cycle of loosely solved directions near equilibrium).
+///   26.0 s against 26.1 s fixed at 1e-6 (2 jobs); six perturbed sample mitral closures took
+///   72-104 factorizations against 90-111 fixed (the Newton path, not the solves, sets these);
+///   the ×16 mitral closure (with the projected retry alone) 210 directions, 152
+///   factorizations and 50 s against 81, 79 and 33 s (a cycle of loosely solved directions
+///   near equilibrium).
 ///   Why it is not the default: the saving is small with GMRES's directions, and a direction
 ///   solved to 1e-2 differs from the exact one by that much, so the path is another than exact
-///   Newton's: the normal aortic valve's forty perturbed starts land on one shape, but not
-///   `fixed`'s (band heights up to 0.04 mm apart); with BiCGStab's directions, where the solve
-///   stops being a discrete decision, 9 of the 40 moved by more than the 0.05 mm (mean over
-///   nodes) the solver is held to, against none fixed.
+///   Newton's: the normal aortic valve's forty perturbed starts land on neighbouring
+///   equilibria (band heights spread by up to 0.11 mm, against 1.2e-7 mm fixed); with
+///   BiCGStab's directions, where the solve stops being a discrete decision, 9 of the 40 moved
+///   by more than the 0.05 mm (mean over nodes) the solver is held to, against none fixed
+///   (measured with the projected retry alone).
 enum class NewtonForcing { adaptive, fixed };
 
 /// The forcing sequence η_k of NewtonForcing::adaptive for one load increment.
