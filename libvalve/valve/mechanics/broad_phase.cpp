@@ -77,6 +77,8 @@ bool overlap(const Box& a, const Box& b) {
 /// have more than 4 cells per target (plus 4,096). A target much larger than the mean is
 /// listed in every cell it covers: fine for meshes, whose triangles and edges are of one
 /// size, not for boxes of very different sizes.
+bool finite(const Box& b) { return b.lo.allFinite() && b.hi.allFinite(); }
+
 template <class Skip>
 std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, const std::vector<Box>& queries,
                                                const std::vector<int>& query_ids, const Skip& skip) {
@@ -86,7 +88,6 @@ std::vector<std::pair<int, int>> grid_overlaps(const std::vector<Box>& targets, 
   double target_extent = 0, query_extent = 0;
   // A non-finite coordinate would make the cell count below never fit (and the cast to int
   // undefined); the solvers stop on non-finite states before they get here.
-  auto finite = [](const Box& b) { return b.lo.allFinite() && b.hi.allFinite(); };
   for (const auto& b : targets) {
     if (!finite(b)) throw NumericalError("broad phase: non-finite positions");
     target_extent += (b.hi - b.lo).maxCoeff();
@@ -242,7 +243,7 @@ std::vector<std::pair<int, int>> bounding_volume_hierarchy(const VecX& x, const 
   if (boxes.empty() || nodes.empty()) return {};  // as the grid, which returns before its checks
   // As the grid: non-finite positions stop here (a NaN centre would break the median splits).
   for (const auto& b : boxes)
-    if (!b.lo.allFinite() || !b.hi.allFinite()) throw NumericalError("broad phase: non-finite positions");
+    if (!finite(b)) throw NumericalError("broad phase: non-finite positions");
   for (int i : nodes)
     if (!node3(x, i).allFinite()) throw NumericalError("broad phase: non-finite positions");
   const BoxTree tree(boxes);

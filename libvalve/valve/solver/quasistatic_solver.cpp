@@ -59,7 +59,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
     trust = 0.05 * (p.colwise().maxCoeff() - p.colwise().minCoeff()).norm();
   }
   SystemMatrix system_matrix;
-  SparseMatrix exact_matrix, blended_matrix;
+  SparseMatrix exact_matrix, exact_departure, blended_matrix;
   VecX f, fe, dx, b, f_trial, x_before;
   double delta = opt.initial_proximal_step;
   ExactHessianSchedule exact_hessians;
@@ -145,8 +145,9 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
           // the same again with the exact Hessians' departure from the projected ones scaled
           // down, P + t (E − P) for t = 1/2, 1/4, ... (the header says why). Each solve counts
           // as a Newton direction, load continuation's fast-increment test included.
+          if (!exact_descends) exact_departure = exact_matrix - P;
           for (double t = 0.5; !exact_descends && t >= kSmallestExactShare; t *= 0.5) {
-            blended_matrix = P + t * (exact_matrix - P);
+            blended_matrix = P + t * exact_departure;
             ++sum.newton_iterations;
             ++sum.scaled_exact_directions;
             exact_descends = solver->set_operator(blended_matrix) && solver->solve(b, dx) && dx.allFinite() &&

@@ -22,7 +22,7 @@ struct SolverSummary {
   long newton_iterations = 0;   // static solver
   long jacobian_evaluations = 0;
   // Quasi-static: directions solved with exact contact Hessians, with their departure from the
-  // projected ones scaled down (after an exact one did not descend), with projected ones.
+  // projected ones scaled down (after an exact one failed), with projected ones.
   long exact_directions = 0, scaled_exact_directions = 0, projected_directions = 0;
   LinearSolverStats linear;
   std::string linear_solver;
