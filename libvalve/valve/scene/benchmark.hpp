@@ -27,6 +27,9 @@ struct ClosureCost {
   double solve_seconds = 0;         // wall time of simulate()
   double one_factorization_seconds = 0;  // median time to factorize the final system once
   double ratio_to_factorization = 0;
+  /// The diagonal shift, relative to each diagonal entry (at least 1), under which the timed
+  /// factorization succeeded: 1e-6, ×100 for each refusal; -1 if none did up to 1e6.
+  double one_factorization_shift = -1;
   VecX x;
 };
 
