@@ -18,6 +18,6 @@ TEST_CASE("the benchmarked closure runs the scene's annulus motion and reports l
   const MatX3 x = unflatten(cost.x);
   for (int i = 0; i < 48; ++i) CHECK((x.row(i) - 0.9 * open.points.row(i)).norm() < 0.05);
   CHECK(cost.one_factorization_seconds > 0);
-  CHECK(cost.one_factorization_shift > 0);  // a whole factorization was timed
+  CHECK(cost.one_factorization_shift >= 0);  // some diagonal shift factorized, and was timed
   CHECK(cost.ratio_to_factorization > 0);
 }

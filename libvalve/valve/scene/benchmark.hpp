@@ -27,8 +27,9 @@ struct ClosureCost {
   double solve_seconds = 0;         // wall time of simulate()
   double one_factorization_seconds = 0;  // median time to factorize the final system once
   double ratio_to_factorization = 0;
-  /// The diagonal shift, relative to each diagonal entry (at least 1), under which the timed
-  /// factorization succeeded: 1e-6, ×100 for each refusal; -1 if none did up to 1e6.
+  /// The diagonal shift, as a fraction of the largest diagonal entry, under which the timed
+  /// factorization succeeded: 0 (the tangent itself), else 1e-4, 1e-2, ..., 1e4; -1 if none did
+  /// (nothing timed).
   double one_factorization_shift = -1;
   VecX x;
 };
