@@ -96,7 +96,7 @@ int main(int argc, char** argv) {
           << c.solve_seconds << "," << c.one_factorization_seconds << "," << c.ratio_to_factorization << ","
           << c.one_factorization_shift << "\n";
       if (c.one_factorization_shift < 0)
-        std::fprintf(stderr, "valve-bench: %s: the final tangent did not factorize at any diagonal shift; no factorization timed\n",
+        std::fprintf(stderr, "valve-bench: warning: %s: the final tangent did not factorize at any diagonal shift; no factorization timed\n",
                      name.c_str());
     }
     const double force_ratio = terms["mass_spring"].force_ns_per_element / terms["membrane_fe"].force_ns_per_element;
