@@ -41,6 +41,7 @@ int main(int argc, char** argv) {
     if (auto v = cl.get("mesh")) j["mesh"] = fs::absolute(*v).string();
     for (const auto& a : cl.get_all("set")) apply_override(j, a, scene_file.string());
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "valve-bench: warning: %s\n", w.c_str());
     const int reps = static_cast<int>(StageArguments(cl, {}).integer("repetitions", 7, 1, 1000));
     const TriMesh mesh = read_mesh(scene.mesh_path);
     validate_mesh(mesh, scene.mesh_path.string());

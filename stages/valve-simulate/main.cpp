@@ -46,6 +46,7 @@ int main(int argc, char** argv) {
     json j = scene_json_with_overrides(scene_file, cl);
     if (cl.has("time-series")) j["output"]["time_series"] = true;
     const SceneConfig scene = parse_scene(j, scene_file.string(), scene_file.parent_path());
+    for (const std::string& w : scene.warnings) std::fprintf(stderr, "valve-simulate: warning: %s\n", w.c_str());
     const bool quiet = cl.has("quiet");
 
     const TriMesh mesh = read_leaflet_mesh(scene.mesh_path);

@@ -110,6 +110,22 @@ TEST_CASE("solver.quasistatic.forcing: fixed by default, adaptive on request, an
   CHECK_THROWS_WITH(forcing({{"forcing", "exact"}}), Catch::Contains("solver.quasistatic.forcing"));
 }
 
+TEST_CASE("the quasi-static solver with penalty contact runs with a warning that sheets may end crossed", "[scene][config]") {
+  auto warnings = [](const std::string& solver, const std::string& contact) {
+    const json j = {{"mesh", "m.vtp"},          {"model", "membrane_fe"},
+                    {"material", "aortic_leaflet"}, {"pressure", {{"value", "80 mmHg"}}},
+                    {"contact", {{"model", contact}}}, {"solver", {{"type", solver}}}};
+    return parse_scene(j, "s.json", ".").warnings;
+  };
+  const auto penalty = warnings("quasistatic", "penalty");
+  REQUIRE(penalty.size() == 1);
+  CHECK_THAT(penalty[0], Catch::Contains("s.json") && Catch::Contains("contact.model penalty") &&
+                             Catch::Contains("crossed") && Catch::Contains("contact.model barrier"));
+  CHECK(warnings("quasistatic", "barrier").empty());
+  CHECK(warnings("bdf2", "penalty").empty());
+  CHECK(warnings("auto", "penalty").empty());
+}
+
 TEST_CASE("contact.max_detection caps the automatic detection distance and is refused beside a given distance", "[scene][config]") {
   auto contact = [](const json& block) {
     const json j = {{"mesh", "m.vtp"}, {"model", "membrane_fe"}, {"material", "aortic_leaflet"},

@@ -171,6 +171,9 @@ struct SceneConfig {
   bool time_series = false;
   int time_series_every = 10;  // accepted steps between frames
   json used;
+  /// Settings that run but defeat a guarantee a user may count on, one line each (the
+  /// stages print them as warnings).
+  std::vector<std::string> warnings;
 };
 
 /// The scene file's JSON with a stage's command-line overrides applied: --mesh, --model,
