@@ -106,3 +106,19 @@ TEST_CASE("an increment still closing at its iteration limit goes on; one that o
   }
   CHECK(it == 40);
 }
+
+TEST_CASE("a line search may not step back to any of the last eight iterates", "[solver][quasistatic]") {
+  // Iterates 1 to 9 along x; the first has left the window when the ninth is recorded.
+  RecentIterates recent;
+  auto at = [](double position) {
+    VecX y = VecX::Zero(6);
+    y[0] = position;
+    return y;
+  };
+  CHECK_FALSE(recent.returns_to(at(1), 1e-3));  // nothing recorded yet
+  for (int k = 1; k <= 9; ++k) recent.push(at(k));
+  for (int k = 2; k <= 9; ++k) CHECK(recent.returns_to(at(k + 5e-4), 1e-3));
+  CHECK_FALSE(recent.returns_to(at(1), 1e-3));          // the ninth iterate back
+  CHECK_FALSE(recent.returns_to(at(5.5), 1e-3));        // between iterates, farther than the tolerance
+  CHECK_FALSE(recent.returns_to(VecX::Zero(3), 1e-3));  // another size: another system
+}

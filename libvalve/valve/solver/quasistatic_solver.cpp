@@ -60,7 +60,8 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
   }
   SystemMatrix system_matrix;
   SparseMatrix exact_matrix, exact_departure, blended_matrix;
-  VecX f, fe, dx, b, f_trial, x_before;
+  VecX f, fe, dx, b, f_trial;
+  RecentIterates recent;
   double delta = opt.initial_proximal_step;
   ExactHessianSchedule exact_hessians;
   bool exact = false;
@@ -191,9 +192,9 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
           // other's merit: across a kink of the contact forces Newton can step from one to the
           // other and back (without this rule one of ten perturbed aortic starts spends 330
           // iterations between two states 0.001 mm apart, relative residuals 5.9e-4 and
-          // 1.2e-3). A step back to the previous iterate is refused; the search halves it.
-          const bool returns = x_before.size() == x.size() &&
-                               largest_node_norm(trial - x_before) <= 1e-3 * alpha * largest_node_norm(dx);
+          // 1.2e-3); across several kinks, in longer cycles (RecentIterates). A step back to one
+          // of the last iterates is refused; the search halves it.
+          const bool returns = recent.returns_to(trial, 1e-3 * alpha * largest_node_norm(dx));
           bool sufficient = !returns && std::isfinite(merit) && merit <= pi0 - opt.armijo * alpha * descent;
           // Near equilibrium Φ_k, a model with the pressure frozen, need not fall along Newton's
           // direction for f = 0 (the pressure's non-symmetric stiffness is in the direction,
@@ -202,7 +203,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
               sys.evaluate(State{trial, v, load, 0.0}, f_trial, false, false))
             sufficient = free_norm(f_trial, cons) <= (1 - opt.armijo * alpha) * r;
           if (sufficient) {
-            x_before = x;
+            recent.push(x);
             x = trial;
             accepted = true;
             if (opt.proximal_rule == ProximalStepRule::step) {
