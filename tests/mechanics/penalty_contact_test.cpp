@@ -534,6 +534,48 @@ TEST_CASE("barrier contact: a candidate list kept while nodes move finds the con
   CHECK(bounded > 50);
 }
 
+TEST_CASE("barrier contact: a candidate list kept while both leaflets move finds the contacts a fresh one finds", "[mechanics][penalty_contact]") {
+  // The list is built with node 3 1 mm over the lower face; then the upper leaflet moves down
+  // and the lower one up, each as a whole, by 0.45-0.85 mm together (within the list's 1.5 mm
+  // tolerance: no rebuild). A pair's gap bound is its build distance less its nodes' motion
+  // relative to each other: a bound that counted one leaflet's motion only would miss the pairs
+  // that came within. Then at trial states a little further on (no couplings refreshed there).
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.offset = 0.1;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), share(0.2, 0.8);
+  auto move_leaflet = [](VecX& y, int first, const Vec3& by) {
+    for (int i = first; i < first + 3; ++i) node3(y, i) += by;
+  };
+  int within = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    PenaltyContactTerm kept(two_sheets(1.0), opt, std::vector<char>(18, 0));
+    VecX x = flatten(two_sheets(1.0).points);
+    move_leaflet(x, 3, Vec3(0.3 * u(rng), 0.2 * u(rng), 0));
+    kept.update_couplings(x);
+    const double approach = 0.65 + 0.2 * u(rng), down = share(rng) * approach;
+    move_leaflet(x, 3, Vec3(0.05 * u(rng), 0.05 * u(rng), -down));
+    move_leaflet(x, 0, Vec3(0.05 * u(rng), 0.05 * u(rng), approach - down));
+    kept.update_couplings(x);
+    PenaltyContactTerm fresh(two_sheets(1.0), opt, std::vector<char>(18, 0));
+    fresh.update_couplings(x);
+    if (node_face_distance(x, 3, 0, 1, 2) < 0.35) ++within;
+    CHECK(energy_of(kept, x) == Approx(energy_of(fresh, x)).margin(1e-12));
+    CHECK((forces(kept, x) - forces(fresh, x)).norm() <= 1e-12);
+
+    VecX y = x;
+    move_leaflet(y, 3, Vec3(0, 0, -0.03 * share(rng)));
+    move_leaflet(y, 0, Vec3(0, 0, 0.03 * share(rng)));
+    PenaltyContactTerm fresh_at_y(two_sheets(1.0), opt, std::vector<char>(18, 0));
+    fresh_at_y.update_couplings(y);
+    CHECK(energy_of(kept, y) == Approx(energy_of(fresh_at_y, y)).margin(1e-12));
+    CHECK((forces(kept, y) - forces(fresh_at_y, y)).norm() <= 1e-12);
+  }
+  CHECK(within > 20);
+  CHECK(within < 80);
+}
+
 TEST_CASE("barrier contact: a face hinging beside a node is measured along the step, not cut to the gap", "[mechanics][penalty_contact]") {
   // Node 3 hangs 0.1 mm over the lower face at barycentric weight 1/4 of its node 2. Raising
   // node 2 by a hinges the face about its edge 0-1: the face under the node rises by a/4, so
