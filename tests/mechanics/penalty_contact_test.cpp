@@ -473,6 +473,15 @@ bool cut_step_keeps_node_3_off_face(const PenaltyContactTerm& c, const VecX& x, 
   return true;
 }
 
+// The energy and forces at y of `kept` (a term whose candidate list was built elsewhere) are a
+// fresh two_sheets(1.0) term's there, one that builds its list at y.
+void check_kept_list_matches_fresh(const PenaltyContactTerm& kept, const VecX& y, const PenaltyContactOptions& opt) {
+  PenaltyContactTerm fresh(two_sheets(1.0), opt, std::vector<char>(18, 0));
+  fresh.update_couplings(y);
+  CHECK(energy_of(kept, y) == Approx(energy_of(fresh, y)).margin(1e-12));
+  CHECK((forces(kept, y) - forces(fresh, y)).norm() <= 1e-12);
+}
+
 }  // namespace
 
 TEST_CASE("barrier contact: a step within the ratio keeps every pair beyond the offset", "[mechanics][penalty_contact]") {
@@ -518,11 +527,8 @@ TEST_CASE("barrier contact: a candidate list kept while nodes move finds the con
     kept.update_couplings(x);
     node3(x, 3) += Vec3(0.1 * u(rng), 0.1 * u(rng), -1.0).normalized() * (0.65 + 0.2 * u(rng));
     kept.update_couplings(x);
-    PenaltyContactTerm fresh(two_sheets(1.0), opt, std::vector<char>(18, 0));
-    fresh.update_couplings(x);
     if (node_face_distance(x, 3, 0, 1, 2) < 0.35) ++within;
-    CHECK(energy_of(kept, x) == Approx(energy_of(fresh, x)).margin(1e-12));
-    CHECK((forces(kept, x) - forces(fresh, x)).norm() <= 1e-12);
+    check_kept_list_matches_fresh(kept, x, opt);
 
     VecX dx = VecX::Zero(x.size());
     for (int k = 0; k < 18; ++k) dx[k] = 0.05 * u(rng);
@@ -558,19 +564,13 @@ TEST_CASE("barrier contact: a candidate list kept while both leaflets move finds
     move_leaflet(x, 3, Vec3(0.05 * u(rng), 0.05 * u(rng), -down));
     move_leaflet(x, 0, Vec3(0.05 * u(rng), 0.05 * u(rng), approach - down));
     kept.update_couplings(x);
-    PenaltyContactTerm fresh(two_sheets(1.0), opt, std::vector<char>(18, 0));
-    fresh.update_couplings(x);
     if (node_face_distance(x, 3, 0, 1, 2) < 0.35) ++within;
-    CHECK(energy_of(kept, x) == Approx(energy_of(fresh, x)).margin(1e-12));
-    CHECK((forces(kept, x) - forces(fresh, x)).norm() <= 1e-12);
+    check_kept_list_matches_fresh(kept, x, opt);
 
     VecX y = x;
     move_leaflet(y, 3, Vec3(0, 0, -0.03 * share(rng)));
     move_leaflet(y, 0, Vec3(0, 0, 0.03 * share(rng)));
-    PenaltyContactTerm fresh_at_y(two_sheets(1.0), opt, std::vector<char>(18, 0));
-    fresh_at_y.update_couplings(y);
-    CHECK(energy_of(kept, y) == Approx(energy_of(fresh_at_y, y)).margin(1e-12));
-    CHECK((forces(kept, y) - forces(fresh_at_y, y)).norm() <= 1e-12);
+    check_kept_list_matches_fresh(kept, y, opt);
   }
   CHECK(within > 20);
   CHECK(within < 80);
