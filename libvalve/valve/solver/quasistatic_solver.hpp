@@ -244,9 +244,9 @@ class IncrementBudget {
 /// cycle: the ×16 mitral closure run with two BLAS threads (OPENBLAS_NUM_THREADS=2, rounding
 /// alone differing) settled at δ's ceiling into a 4-cycle (relative residuals 9.4e-4, 9.2e-4,
 /// 9.4e-4, 4.6e-4; full, full, half, full steps) until its increment's budget ran out: 624
-/// directions and 304 s, against 104 and 40 s refusing returns to the last eight (the same
-/// closure with one thread: 77 directions either way). Refusing a return to the previous
-/// iterate alone stops only 2-cycles.
+/// directions and 590 factorizations (about five minutes), against 104 and 95 (40 s) refusing
+/// returns to the last eight (the same closure with one thread: 77 directions either way).
+/// Refusing a return to the previous iterate alone stops only 2-cycles.
 class RecentIterates {
  public:
   static constexpr std::size_t kCount = 8;
