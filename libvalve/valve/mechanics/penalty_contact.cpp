@@ -311,27 +311,17 @@ double additive_ccd_fraction(bool edge, const PairVector12& y, const PairVector1
   return t;
 }
 
-// How much a pair's distance can have changed when its nodes moved from `from` to `to`: at
-// most the largest relative motion of a node of one side and a node of the other,
-// max |Δ_b − Δ_a| (each closest point moves by a convex combination of its side's node
-// motions, so their difference by a convex combination of the Δ_b − Δ_a). Far tighter than
-// each side's largest motion added up where a sheet moves as a whole: same-leaflet pairs
-// within the detection distance, most of the candidates, keep their distance while the
-// leaflet swings.
-double relative_motion(const VecX& from, const VecX& to, const int (&nodes)[4], int first_side) {
-  double m = 0;
-  for (int a = 0; a < first_side; ++a) {
-    const Vec3 da = node3(to, nodes[a]) - node3(from, nodes[a]);
-    for (int b = first_side; b < 4; ++b) m = std::max(m, (node3(to, nodes[b]) - node3(from, nodes[b]) - da).norm());
-  }
-  return m;
-}
-
-// The same for a step: max |dx_b − dx_a|, which bounds how far the pair closes along it.
-double relative_step(const VecX& dx, const int (&nodes)[4], int first_side) {
+// How much a pair's distance can change when its nodes move by `motion` (a step, or their
+// displacement since some state): at most the largest relative motion of a node of one side
+// and a node of the other, max |m_b − m_a| (each closest point moves by a convex combination
+// of its side's node motions, so their difference by a convex combination of the m_b − m_a).
+// Far tighter than each side's largest motion added up where a sheet moves as a whole:
+// same-leaflet pairs within the detection distance, most of the candidates, keep their
+// distance while the leaflet swings.
+double relative_motion(const VecX& motion, const int (&nodes)[4], int first_side) {
   double m = 0;
   for (int a = 0; a < first_side; ++a)
-    for (int b = first_side; b < 4; ++b) m = std::max(m, (node3(dx, nodes[b]) - node3(dx, nodes[a])).norm());
+    for (int b = first_side; b < 4; ++b) m = std::max(m, (node3(motion, nodes[b]) - node3(motion, nodes[a])).norm());
   return m;
 }
 
@@ -380,7 +370,7 @@ double PenaltyContactTerm::step_ratio(const VecX& x, const VecX& dx) const {
     if (2 * largest_step <= floor * 0.8 * c.recorded_room) return c;
     // The pair closes by at most its nodes' largest relative step; with the margin, a pair so
     // passed over could not have had a plane bound above `floor`.
-    if (relative_step(dx, c.nodes, first_side) * (1 + 1e-9) <= floor * 0.8 * c.recorded_room) return c;
+    if (relative_motion(dx, c.nodes, first_side) * (1 + 1e-9) <= floor * 0.8 * c.recorded_room) return c;
     const PairGap g = recorded.lower_bound ? measured_gap(k, contacts_x_) : recorded;
     c.room = room_of(g);
     double closing = 0;
@@ -470,7 +460,13 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
   // failing that, less its own nodes' relative motion since (relative_motion).
   // (On the aortic valve 1,100 of 45,000 candidates are active.)
   const bool bounded = !gaps && contacts_x_.size() == x.size() && pair_gaps_.size() == n;
-  const double moved = bounded ? largest_node_norm(x - contacts_x_) : 0.0;
+  const bool since_build = gaps && built_at_.size() == x.size() && built_distance_.size() == n;
+  // The nodes' displacement since the state the recorded gaps (bounded) or the build's
+  // distances (since_build) hold for, once for every pair.
+  VecX motion;
+  if (bounded) motion = x - contacts_x_;
+  if (since_build) motion = x - built_at_;
+  const double moved = bounded ? largest_node_norm(motion) : 0.0;
   const double tolerance = 1e-9 * (1 + delta);
   const double beyond = delta + 2 * moved + tolerance;
   // Recording the gaps, a pair is measured only if it may be within reach: its distance when
@@ -479,13 +475,12 @@ void PenaltyContactTerm::active_contacts(const VecX& x, std::vector<Contact>& ou
   // cannot rule out with it (on the sample mitral closure 97 % of the gaps recorded are bounds,
   // and a quarter as many gaps are measured later by the step bound: a quarter of the distance
   // queries, the same iterates).
-  const bool since_build = gaps && built_at_.size() == x.size() && built_distance_.size() == n;
   // True when pair k is surely beyond the reach (its gap then recorded as that bound); side a
   // is the first `first_side` of the four nodes.
   auto out_of_reach = [&](size_t k, const int (&nodes)[4], int first_side) {
-    if (bounded) return pair_gaps_[k].distance - relative_motion(contacts_x_, x, nodes, first_side) >= delta + tolerance;
+    if (bounded) return pair_gaps_[k].distance - relative_motion(motion, nodes, first_side) >= delta + tolerance;
     if (!since_build) return false;
-    const double bound = built_distance_[k] - relative_motion(built_at_, x, nodes, first_side) - tolerance;
+    const double bound = built_distance_[k] - relative_motion(motion, nodes, first_side) - tolerance;
     if (bound < delta) return false;
     (*gaps)[k] = PairGap{bound, Vec3::Zero(), true};
     return true;
