@@ -91,7 +91,13 @@
 //   compressed springs' F/l refuses none but lengthens the path (measured with the projected
 //   retry alone): 111 directions with it dropped from every matrix (the last ones linear,
 //   stopping at 9e-7), 255 with it dropped from the projected directions' matrices only,
-//   against 71. Refusal keeps
+//   against 71. The membrane FE tangent so projected on the Texas TriValve deck (its material
+//   tangent's and its stress's eigenvalues clamped at 0) stops the refusals there, where δ stays
+//   at 0.01-0.16 for about 300 directions, but the path does not shorten: δ reaches 1e4 by the
+//   88th direction, where the exact directions then take about 1,000 GMRES steps each (stopped
+//   after 134 directions); with exact contact Hessians kept out until the residual is within
+//   1e-2 the residual wanders between 0.01 and 2 for 300 directions at δ's ceiling (stopped at
+//   434 directions, 210 s; the default converges in 624, 248 s). Refusal keeps
 //   Newton's path continuous in its start: over eleven starts 1e-6 mm apart the aortic valve FE
 //   closure spreads 9e-10 mm (median, mean over nodes), against 0.007 mm with an LDLᵀ, which
 //   factorises the indefinite matrix and lets δ grow past it; at a fixed 2.5 mm contact detection
@@ -139,6 +145,17 @@ constexpr double kMaxProximalStep = 1e14;
 /// once δ has grown fourfold past where it failed. That threshold stops at the largest δ, where
 /// δ itself stops: past it exact Hessians would never come back, and the aortic valve FE
 /// closure ended in 150 linear iterations (1e-3 to 1e-6 relative residual) with projected ones.
+/// Measured and not taken: exact Hessians only once a load increment's relative residual has
+/// come within 0.1, and kept from there on (δ reaches 1e4 at a residual of 0.44 on the ×16
+/// mitral closure, where their negative part gives GMRES solves of 40-170 steps). From that
+/// closure's mesh and five starts moved by 1e-6 mm: 77-105 factorisations (median 92),
+/// 1,072-2,680 GMRES steps, 27-41 s (median 32 s), against 78-119 (median 106), 1,850-4,376 and
+/// 31-52 s (median 45 s) with δ alone deciding (the mesh's two closures 0.014 mm apart). The
+/// mitral, aortic and deck closures take the same paths or a few factorisations fewer, but 120
+/// of the graft study's 180 closures take other paths (the same graft named; one native band
+/// 1.8 mm off, among neighbouring equilibria), so the studies' figures move with it. Switching
+/// back to projected Hessians whenever the residual exceeds 0.1 again made the aortic valve M-S
+/// closure take 69 factorisations from each of ten perturbed starts instead of 55-62.
 class ExactHessianSchedule {
  public:
   bool exact_at(double delta) const { return delta >= from_; }
