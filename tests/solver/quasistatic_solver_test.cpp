@@ -9,15 +9,29 @@
 using namespace valve;
 
 TEST_CASE("exact contact Hessians from a proximal step of 1e4 ms² on", "[solver][quasistatic]") {
-  const ExactHessianSchedule schedule;
+  ExactHessianSchedule schedule;
+  schedule.record_residual(1e-3);
   CHECK_FALSE(schedule.exact_at(0.01));
   CHECK_FALSE(schedule.exact_at(9.99e3));
   CHECK(schedule.exact_at(1e4));
   CHECK(schedule.exact_at(kMaxProximalStep));
 }
 
+TEST_CASE("exact contact Hessians once an increment's residual has come within a tenth of the load", "[solver][quasistatic]") {
+  ExactHessianSchedule schedule;
+  schedule.record_residual(0.44);  // settling into contact: projected whatever the proximal step
+  CHECK_FALSE(schedule.exact_at(kMaxProximalStep));
+  schedule.record_residual(0.1);
+  CHECK(schedule.exact_at(1e4));
+  schedule.record_residual(0.3);  // across a kink the residual may rise again: exact ones stay
+  CHECK(schedule.exact_at(1e4));
+  schedule.start_increment();  // the next load increment starts far from its equilibrium
+  CHECK_FALSE(schedule.exact_at(1e4));
+}
+
 TEST_CASE("after a failed exact direction, exact Hessians wait until the proximal step has grown fourfold", "[solver][quasistatic]") {
   ExactHessianSchedule schedule;
+  schedule.record_residual(1e-3);
   schedule.failed_at(1e6);
   CHECK_FALSE(schedule.exact_at(1e6));
   CHECK_FALSE(schedule.exact_at(3.99e6));
@@ -28,6 +42,7 @@ TEST_CASE("exact Hessians come back at the largest proximal step after failing t
   // δ stops growing at kMaxProximalStep: a threshold beyond it would leave Newton's last
   // iterations on projected Hessians for good.
   ExactHessianSchedule schedule;
+  schedule.record_residual(1e-3);
   schedule.failed_at(kMaxProximalStep / 2);
   CHECK(schedule.exact_at(kMaxProximalStep));
   schedule.failed_at(kMaxProximalStep);

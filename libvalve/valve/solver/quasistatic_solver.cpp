@@ -74,9 +74,12 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
     double reference = free_norm(sys.external_force(State{x, v, load_target, 0.0}), cons);
     ForcingTerm forcing(opt.iterative_tolerance, opt.relative_residual_tolerance);
     IncrementBudget budget(opt.max_iterations);
+    exact_hessians.start_increment();
     for (int it = 0; budget.allows(it); ++it) {
       if (wall() > opt.max_wall_seconds) return false;
       const State s{x, v, load, 0.0};
+      // The Jacobian's kind is chosen before the evaluation that gives this iterate's residual:
+      // the schedule knows the residuals up to the last iterate.
       exact = exact_hessians.exact_at(delta);
       sys.set_jacobian_mode(exact ? JacobianMode::exact : JacobianMode::projected);
       if (!sys.evaluate(s, f, true, false)) return false;
@@ -86,6 +89,7 @@ SolverSummary solve_quasistatic(MechanicalSystem& sys, VecX& x, const Quasistati
       if (!(reference > 0)) reference = std::max(r, 1e-300);
       sum.relative_residual = r / reference;
       if (sum.relative_residual <= opt.relative_residual_tolerance) return true;
+      exact_hessians.record_residual(sum.relative_residual);
       budget.record(sum.relative_residual);
       if (opt.forcing == NewtonForcing::adaptive) solver->set_tolerance(forcing.next(sum.relative_residual));
       fe = sys.external_force(s);  // frozen for this iteration (the follower pressure)

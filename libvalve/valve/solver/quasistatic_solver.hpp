@@ -18,9 +18,10 @@
 //   again at the same δ without the applied loads' stiffness (Φ_k's own Hessian); δ shrinks
 //   ×4 when that fails too, or the solve or the line search fails; how it grows is
 //   ProximalStepRule's. Near equilibrium the iteration is Newton's (δ → ∞).
-// * Contact Hessians: projected to positive semi-definite while δ < 1e4 ms², exact from
-//   there on, so that the last iterations converge quadratically (the projection's error made
-//   them linear: 200 iterations from 1e-2 to 1e-6 on the sample mitral closure). A direction
+// * Contact Hessians: projected to positive semi-definite until δ ≥ 1e4 ms² and the load
+//   increment's relative residual has come within 0.1, exact from there on, so that the last
+//   iterations converge quadratically (the projection's error made them linear: 200
+//   iterations from 1e-2 to 1e-6 on the sample mitral closure). A direction
 //   that fails with the exact ones (it does not descend on Φ_k: their negative part, b′∇²d of
 //   pairs closest at an edge or a vertex, outweighs the rest along f; or GMRES does not
 //   converge on it) is solved again with
@@ -28,7 +29,7 @@
 //   1/64, and only then with projected ones, all on the same factorisation at the same δ
 //   (ExactHessianSchedule: when exact ones come back). A share of the exact curvature keeps
 //   the iteration closer to Newton's than the projection does. Measured against the projected
-//   retry alone: the normal-valve study's 100 taut-root closures 7,341 factorisations against
+//   retry alone, with exact Hessians from δ = 1e4 on whatever the residual: the normal-valve study's 100 taut-root closures 7,341 factorisations against
 //   8,395 (2 against 7 over 150), its 70 slack-root ones 26,283 against 26,209; the ×16
 //   mitral closure from six starts 1e-6 mm apart 78-119 against 79-159; the sample mitral
 //   closure from eleven 72-111 against 72-138 (median 96 both); the aortic valve M-S closure
@@ -139,30 +140,44 @@ enum class ProximalStepRule { step, gain };
 /// Largest proximal step δ (ms²): from there on the M/δ term is nothing and δ stops growing.
 constexpr double kMaxProximalStep = 1e14;
 
+/// The relative residual a load increment must first come within before exact contact
+/// Hessians enter (ExactHessianSchedule). Why: δ can reach 1e4 while the leaflets are still
+/// settling into contact (the ×16 mitral closure at a relative residual of 0.44), and there the
+/// exact Hessians' negative part (pairs closest at an edge or a vertex, a set that still changes
+/// from one iterate to the next) gives directions that do not descend and GMRES solves of
+/// 40-170 steps. Measured from the ×16 closure's mesh and five starts moved by 1e-6 mm: 77-105
+/// factorisations (median 92), 1,072-2,680 GMRES steps, 27-41 s (median 32 s), against 78-119
+/// (median 106), 1,850-4,376 and 31-52 s (median 45 s) with δ alone deciding (the mesh's two
+/// closures 0.014 mm apart); the aortic valve closures from their mesh and ten perturbed starts,
+/// the sample mitral closure and the Texas TriValve deck take the same paths, while 120 of the
+/// graft study's 180 closures take others, among neighbouring equilibria where a size sits at a
+/// fork (docs/results/quasistatic-solver.md). Once within the bound they stay, although the residual
+/// may rise again across a kink: switching back to projected Hessians whenever it exceeds the
+/// bound made the aortic valve M-S closure take 69 factorisations from each of ten perturbed
+/// starts instead of 55-62.
+constexpr double kExactHessianResidual = 0.1;
+
 /// When the contact Hessians enter exact rather than projected to positive semi-definite:
 /// from δ = 1e4 ms² on (the M/δ term is then too weak to matter and the iteration is Newton's,
-/// which the projection's error would make linear), and after a direction failed with them,
-/// once δ has grown fourfold past where it failed. That threshold stops at the largest δ, where
-/// δ itself stops: past it exact Hessians would never come back, and the aortic valve FE
-/// closure ended in 150 linear iterations (1e-3 to 1e-6 relative residual) with projected ones.
-/// Measured and not taken: exact Hessians only once a load increment's relative residual has
-/// come within 0.1, and kept from there on (δ reaches 1e4 at a residual of 0.44 on the ×16
-/// mitral closure, where their negative part gives GMRES solves of 40-170 steps). From that
-/// closure's mesh and five starts moved by 1e-6 mm: 77-105 factorisations (median 92),
-/// 1,072-2,680 GMRES steps, 27-41 s (median 32 s), against 78-119 (median 106), 1,850-4,376 and
-/// 31-52 s (median 45 s) with δ alone deciding (the mesh's two closures 0.014 mm apart). The
-/// mitral, aortic and deck closures take the same paths or a few factorisations fewer, but 120
-/// of the graft study's 180 closures take other paths (the same graft named; one native band
-/// 1.8 mm off, among neighbouring equilibria), so the studies' figures move with it. Switching
-/// back to projected Hessians whenever the residual exceeds 0.1 again made the aortic valve M-S
-/// closure take 69 factorisations from each of ten perturbed starts instead of 55-62.
+/// which the projection's error would make linear), once the load increment's relative residual
+/// has come within kExactHessianResidual, and after a direction failed with them, once δ has
+/// grown fourfold past where it failed. That threshold stops at the largest δ, where δ itself
+/// stops: past it exact Hessians would never come back, and the aortic valve FE closure ended in
+/// 150 linear iterations (1e-3 to 1e-6 relative residual) with projected ones.
 class ExactHessianSchedule {
  public:
-  bool exact_at(double delta) const { return delta >= from_; }
+  /// A load increment starts: its residual has not yet come near equilibrium.
+  void start_increment() { near_equilibrium_ = false; }
+  /// The relative residual of the iterate a direction starts from.
+  void record_residual(double relative_residual) {
+    if (relative_residual <= kExactHessianResidual) near_equilibrium_ = true;
+  }
+  bool exact_at(double delta) const { return near_equilibrium_ && delta >= from_; }
   void failed_at(double delta) { from_ = std::min(4 * delta, kMaxProximalStep); }
 
  private:
   double from_ = 1e4;
+  bool near_equilibrium_ = false;
 };
 
 /// How accurately each Newton direction is solved (iterative linear solvers only).
