@@ -293,6 +293,26 @@ TEST_CASE("barrier contact: two leaflets that start within the reach act within 
   CHECK(forces(far_start, start).norm() > 0);
 }
 
+TEST_CASE("barrier contact: a chord point near a sheet is not a narrow pair", "[mechanics][penalty_contact]") {
+  // Chord branch points are nodes without triangles (chordae_attachment.hpp): no contact
+  // pair ever queries them, so one lying within the reach of a sheet where the solve starts
+  // is neither a narrow pair nor counted as one.
+  TriMesh m;
+  m.points.resize(4, 3);
+  m.points << 0, 0, 0, 2, 0, 0, 0, 2, 0, 0.5, 0.5, 0.1;
+  m.triangles = {Tri(0, 1, 2)};
+  m.leaflet = {0};
+  m.fill_defaults();
+  PenaltyContactOptions opt;
+  opt.potential = ContactPotential::barrier;
+  opt.separation = 0.25;
+  PenaltyContactTerm c(m, opt, std::vector<char>(12, 0));
+  const VecX x = flatten(m.points);
+  c.update_couplings(x);
+  CHECK(c.statistics().narrow_pairs == 0);
+  CHECK(forces(c, x).norm() == 0);
+}
+
 TEST_CASE("barrier contact: a narrow pair's offset shrinks with its reach", "[mechanics][penalty_contact]") {
   // ξ = 0.02, ŝ = 0.25 mm, the pair starting 0.1 mm apart: both shrink by 0.1 / (2 · 0.27), so
   // the pair acts below 0.05 mm and keeps 0.0037 mm (its own offset), not 0.02 mm.

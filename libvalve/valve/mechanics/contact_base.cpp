@@ -82,7 +82,10 @@ std::array<int, 4> edge_pair_key(int a, int b, int c, int d) {
 void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only) {
   if (!incidence_only()) return;
   const double touching = kTouchingFraction * rest_reach_;
-  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash)) {
+  // Only nodes of triangles: chord points (nodes without one) are never a contact pair's node.
+  std::vector<char> membrane_node(ring_.size(), 0);
+  for (size_t i = 0; i < ring_.size(); ++i) membrane_node[i] = has_triangles(static_cast<int>(i));
+  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash, membrane_node)) {
     const bool same = same_leaflet(i, t);
     if (within_leaflets_only && !same) continue;
     const Tri& tri = triangles_[t];
