@@ -25,6 +25,8 @@ ContactTopology::ContactTopology(const TriMesh& mesh, bool self_contact, bool be
       std::sort(list.begin(), list.end());
       list.erase(std::unique(list.begin(), list.end()), list.end());
     }
+  triangle_nodes_.assign(n, 0);
+  for (int i = 0; i < n; ++i) triangle_nodes_[i] = !ring_[i].empty();
   const Topology topo = build_topology(triangles_, n);
   double sum = 0;
   for (const Edge& e : topo.edges) {
@@ -83,9 +85,7 @@ void ContactTopology::exclude_close_at(const VecX& x, bool within_leaflets_only)
   if (!incidence_only()) return;
   const double touching = kTouchingFraction * rest_reach_;
   // Only nodes of triangles: chord points (nodes without one) are never a contact pair's node.
-  std::vector<char> membrane_node(ring_.size(), 0);
-  for (size_t i = 0; i < ring_.size(); ++i) membrane_node[i] = has_triangles(static_cast<int>(i));
-  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash, membrane_node)) {
+  for (const auto& [i, t] : broad_phase_pairs(x, triangles_, rest_reach_, BroadPhaseMethod::spatial_hash, triangle_nodes_)) {
     const bool same = same_leaflet(i, t);
     if (within_leaflets_only && !same) continue;
     const Tri& tri = triangles_[t];

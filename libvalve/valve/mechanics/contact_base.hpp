@@ -84,8 +84,11 @@ class ContactTopology {
   /// or that the leaflet rule or a touching start excludes, among them.
   long narrow_pairs() const { return static_cast<long>(narrow_faces_.size() + narrow_edges_.size()); }
   bool on_leaflet(int node, int leaflet) const;
-  /// Whether the node belongs to any triangle (isolated nodes never touch anything).
-  bool has_triangles(int node) const { return !ring_[node].empty(); }
+  /// Whether the node belongs to any triangle (isolated nodes, such as chord points, never
+  /// touch anything).
+  bool has_triangles(int node) const { return triangle_nodes_[node] != 0; }
+  /// has_triangles for every node: the nodes a broad phase queries.
+  const std::vector<char>& triangle_nodes() const { return triangle_nodes_; }
 
   const std::vector<Tri>& triangles() const { return triangles_; }
   int leaflet_of(int triangle) const { return leaflet_[triangle]; }
@@ -118,6 +121,7 @@ class ContactTopology {
   std::vector<int> leaflet_;                     // per triangle
   std::vector<std::vector<int>> node_leaflets_;  // sorted
   std::vector<std::vector<int>> ring_;           // sorted 1-ring incl. the node
+  std::vector<char> triangle_nodes_;             // has_triangles per node
   std::vector<std::pair<int, int>> edges_;
   std::vector<char> boundary_edge_;
   double mean_edge_ = 0;

@@ -41,9 +41,7 @@ PenaltyContactTerm::PenaltyContactTerm(const TriMesh& mesh, const PenaltyContact
   if (opt_.max_detection != 0) detection_ = std::min(detection_, opt_.max_detection);
   const int n = mesh.num_nodes();
   constrained_node_.assign(n, 0);
-  query_.assign(n, 0);
   for (int i = 0; i < n; ++i) constrained_node_[i] = constrained[3 * i];
-  for (int i = 0; i < n; ++i) query_[i] = topology_.has_triangles(i);
   if (opt_.edge_contact)
     for (size_t e = 0; e < topology_.edges().size(); ++e)
       if (opt_.interior_edges || topology_.boundary_edge()[e]) query_edges_.push_back(static_cast<int>(e));
@@ -115,7 +113,7 @@ void PenaltyContactTerm::rebuild_candidates(const VecX& x) {
   face_pairs_.clear();
   built_distance_.clear();
   pair_scale_.clear();
-  const auto face_candidates = broad_phase_pairs(x, tris, detection_, opt_.broad_phase, query_);
+  const auto face_candidates = broad_phase_pairs(x, tris, detection_, opt_.broad_phase, topology_.triangle_nodes());
   const auto face_distance = measure(face_candidates, [&](const std::pair<int, int>& pair) {
     const auto& [i, t] = pair;
     const Tri& tri = tris[t];

@@ -227,7 +227,6 @@ class PenaltyContactTerm final : public ContactForceTerm {
   ContactTopology topology_;
   double detection_;
   std::vector<char> constrained_node_;
-  std::vector<char> query_;        // nodes with at least one triangle
   std::vector<int> query_edges_;     // indices into edges(): the boundary edges, or all with
                                      // interior_edges; empty without edge contact
   std::vector<std::pair<int, int>> face_pairs_;        // (node, triangle) candidates, sorted

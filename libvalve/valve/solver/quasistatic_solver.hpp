@@ -29,8 +29,9 @@
 //   1/64, and only then with projected ones, all on the same factorisation at the same δ
 //   (ExactHessianSchedule: when exact ones come back). A share of the exact curvature keeps
 //   the iteration closer to Newton's than the projection does. Measured against the projected
-//   retry alone, with exact Hessians from δ = 1e4 on whatever the residual: the normal-valve study's 100 taut-root closures 7,341 factorisations against
-//   8,395 (2 against 7 over 150), its 70 slack-root ones 26,283 against 26,209; the ×16
+//   retry alone, with exact Hessians from δ = 1e4 on whatever the residual: the normal-valve
+//   study's 100 taut-root closures 7,341 factorisations against 8,395 (2 against 7 over 150),
+//   its 70 slack-root ones 26,283 against 26,209; the ×16
 //   mitral closure from six starts 1e-6 mm apart 78-119 against 79-159; the sample mitral
 //   closure from eleven 72-111 against 72-138 (median 96 both); the aortic valve M-S closure
 //   from eleven 55-62 against 54-73, FE 54 against 72 from every start; the Texas TriValve
